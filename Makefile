@@ -1,0 +1,187 @@
+# lozenge — one entry point for everything (DESIGN §4). `make help` lists the targets.
+#
+# The library is lib/src/*.c plus, for every stage NN, the graded files of the chosen
+# implementation: IMPL=solutions|assignments sets all stages, IMPL_NN=... one stage.
+# Objects of the two implementations live apart, and build/impl.stamp records the
+# current choice, so switching IMPL relinks exactly what changed.
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := all
+.SUFFIXES:
+MAKEFLAGS += --no-builtin-rules
+.DELETE_ON_ERROR:
+
+SANITIZE ?= 0
+ifeq ($(SANITIZE),1)
+BUILD ?= build/sanitize
+else
+BUILD ?= build
+endif
+
+# ---- stages and the implementation choice --------------------------------
+STAGES := $(sort $(notdir $(wildcard assignments/[0-9][0-9]-*)))
+nn = $(firstword $(subst -, ,$(1)))
+stage_named = $(firstword $(filter $(1)-%,$(STAGES)) $(filter $(1),$(STAGES)))
+
+ifneq ($(wildcard solutions/.),)
+IMPL ?= solutions
+else
+IMPL ?= assignments
+endif
+$(foreach s,$(STAGES),$(eval IMPL_$(call nn,$(s)) ?= $(IMPL)))
+$(foreach s,$(STAGES),$(if $(filter solutions assignments,$(IMPL_$(call nn,$(s)))),,\
+  $(error IMPL_$(call nn,$(s)) = '$(IMPL_$(call nn,$(s)))': allowed values are solutions and assignments)))
+$(foreach s,$(STAGES),$(if $(filter solutions,$(IMPL_$(call nn,$(s)))),$(if $(wildcard solutions/$(s)/.),,\
+  $(error IMPL_$(call nn,$(s))=solutions but solutions/$(s) is not here (a student tree has only assignments/)))))
+impl_of = $(IMPL_$(call nn,$(1)))
+
+# ---- flags ---------------------------------------------------------------
+# pkg-config is asked when a recipe runs (deferred '='), so `make check` can
+# install the packages first and then build with their flags.
+PKG_CFLAGS = $(shell pkg-config --cflags gsl check 2>/dev/null)
+GSL_LIBS = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas)
+CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null || echo -lcheck)
+WARN := -Wall -Wextra -Werror -Wno-unused-parameter -Wshadow -Wstrict-prototypes \
+        -Wmissing-prototypes -Wvla
+OPT ?= -O2
+CFLAGS ?= $(OPT) -g
+CFLAGS += -std=c11 -D_XOPEN_SOURCE=700 $(WARN) -Ilib/include
+LDLIBS := -lm
+ifeq ($(SANITIZE),1)
+CFLAGS += -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+LDFLAGS += -fsanitize=address,undefined
+endif
+
+# Stamps change only when their content does: they make a flag or IMPL switch rebuild.
+CONFIG := $(foreach s,$(STAGES),$(call nn,$(s))=$(call impl_of,$(s)))
+FLAGS_SIG := $(CC) $(CFLAGS) $(LDFLAGS)
+$(shell mkdir -p $(BUILD) && { [ "$$(cat $(BUILD)/impl.stamp 2>/dev/null)" = "$(CONFIG)" ] || echo "$(CONFIG)" > $(BUILD)/impl.stamp; })
+$(shell { [ "$$(cat $(BUILD)/flags.stamp 2>/dev/null)" = '$(FLAGS_SIG)' ] || echo '$(FLAGS_SIG)' > $(BUILD)/flags.stamp; })
+
+# ---- the library ---------------------------------------------------------
+LIB_OBJS := $(patsubst lib/src/%.c,$(BUILD)/obj/lib/%.o,$(wildcard lib/src/*.c))
+stage_objs = $(patsubst $(call impl_of,$(1))/$(1)/%.c,$(BUILD)/obj/$(call impl_of,$(1))/$(1)-%.o,\
+             $(wildcard $(call impl_of,$(1))/$(1)/*.c))
+STAGE_OBJS := $(foreach s,$(STAGES),$(call stage_objs,$(s)))
+LIB := $(BUILD)/lib/liblz.a
+
+COMPILE = @mkdir -p $(@D); echo "  CC      $<"; $(CC) $(CFLAGS) $(PKG_CFLAGS) $(EXTRA_INC) -MMD -MP -c $< -o $@
+LINK = @mkdir -p $(@D); echo "  LD      $@"; $(CC) $(LDFLAGS) -o $@ $(filter %.o %.a,$^) $(EXTRA_LIBS) $(GSL_LIBS) $(LDLIBS)
+
+$(BUILD)/obj/lib/%.o: lib/src/%.c $(BUILD)/flags.stamp
+	$(COMPILE)
+# Stage objects are named <stage>-<file>.o so that archive members never collide.
+define stage_rule
+$(BUILD)/obj/$(2)/$(1)-%.o: $(2)/$(1)/%.c $(BUILD)/flags.stamp
+	$$(COMPILE)
+endef
+$(foreach s,$(STAGES),$(foreach i,solutions assignments,$(eval $(call stage_rule,$(s),$(i)))))
+
+$(LIB): $(LIB_OBJS) $(STAGE_OBJS) $(BUILD)/impl.stamp
+	@mkdir -p $(@D); rm -f $@; echo "  AR      $@"; ar rcs $@ $(filter %.o,$^)
+
+# ---- the CLI -------------------------------------------------------------
+LZ := $(BUILD)/bin/lz
+$(BUILD)/obj/cli/%.o: lib/cli/%.c $(BUILD)/flags.stamp
+	$(COMPILE)
+$(LZ): $(BUILD)/obj/cli/lz.o $(LIB)
+	$(LINK)
+
+# ---- tests ---------------------------------------------------------------
+RUNNER_OBJ := $(BUILD)/obj/grade/runner.o
+$(BUILD)/obj/grade/%.o: tests/grade/%.c $(BUILD)/flags.stamp
+	$(COMPILE)
+$(BUILD)/obj/tests/%.o: EXTRA_INC = -Itests/grade
+$(BUILD)/obj/tests/%.o: tests/%.c $(BUILD)/flags.stamp
+	$(COMPILE)
+test_objs = $(patsubst tests/%.c,$(BUILD)/obj/tests/%.o,$(wildcard tests/$(1)/*.c tests/$(1)/hidden/*.c))
+define test_rule
+$(BUILD)/tests/$(1): $(call test_objs,$(1)) $(RUNNER_OBJ) $(LIB)
+	$$(LINK)
+endef
+TEST_SUITES := lib $(STAGES)
+$(foreach t,$(TEST_SUITES),$(eval $(call test_rule,$(t))))
+$(TEST_SUITES:%=$(BUILD)/tests/%): EXTRA_LIBS = $(CHECK_LIBS)
+rubrics = $(wildcard tests/$(1)/rubric tests/$(1)/rubric-* tests/$(1)/hidden/rubric)
+TEST_BINS := $(TEST_SUITES:%=$(BUILD)/tests/%)
+
+# The report writer of the autograder links no student code.
+REPORT := $(BUILD)/bin/lz-report
+$(REPORT): $(BUILD)/obj/grade/report.o
+	$(LINK)
+
+# ---- lesson drivers: lessons/NN-name/X.c -> build/lessons/NN/bin/X ----
+define lesson_rule
+$(BUILD)/obj/lessons/$(1)/%.o: lessons/$(1)/%.c $(BUILD)/flags.stamp
+	$$(COMPILE)
+$(BUILD)/lessons/$(call nn,$(1))/bin/%: $(BUILD)/obj/lessons/$(1)/%.o $(LIB)
+	$$(LINK)
+endef
+$(foreach s,$(STAGES),$(eval $(call lesson_rule,$(s))))
+DRIVERS := $(foreach s,$(STAGES),$(patsubst lessons/$(s)/%.c,$(BUILD)/lessons/$(call nn,$(s))/bin/%,$(wildcard lessons/$(s)/*.c)))
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+
+# ---- user targets --------------------------------------------------------
+.PHONY: all tests check check-run test grade grade-all lesson demo slides bench \
+        assignments handout deps clean help need-stage
+all: $(LIB) $(LZ) $(DRIVERS)
+tests: $(TEST_BINS) $(REPORT) $(LZ)
+
+deps:
+	@bash lib/tools/deps.sh
+
+# `make check` is the test command (CI runs it): it installs what is missing first.
+check: deps
+	@$(MAKE) --no-print-directory check-run
+
+check-run: all tests
+	@bash lib/tools/check.sh "$(BUILD)" "$(STAGES)"
+
+need-stage:
+	@if [ -z "$(STAGE)" ] || [ -z "$(call stage_named,$(STAGE))" ]; then \
+	  echo "make: say which stage, e.g. STAGE=01; the stages here are: $(STAGES)" >&2; exit 2; fi
+
+# One stage's tests, student view: a line per test, the failure in physics words.
+test: need-stage
+	@$(MAKE) --no-print-directory $(BUILD)/tests/$(call stage_named,$(STAGE))
+	@$(BUILD)/tests/$(call stage_named,$(STAGE)) $(foreach r,$(call rubrics,$(call stage_named,$(STAGE))),--rubric $(r))
+
+grade:
+	@$(MAKE) --no-print-directory $(REPORT)
+	@bash tests/grade/grade.sh --build "$(BUILD)" --submission "$(SUBMISSION)" \
+	  --stage "$(STAGE)" --isolate "$(ISOLATE)"
+
+grade-all:
+	@if [ -z "$(SUBS)" ]; then echo "make grade-all: SUBS=dir (one sub-directory or .tar.gz per student)" >&2; exit 2; fi
+	@$(MAKE) --no-print-directory $(REPORT)
+	@bash tests/grade/grade.sh --build "$(BUILD)" --all "$(SUBS)" --stage "$(STAGE)" --isolate "$(ISOLATE)"
+
+# A lesson's experiments: drivers, then plots, then the stage's scenes (QUICK=1: demo size).
+lesson: need-stage all
+	@bash lib/tools/lesson.sh "$(call stage_named,$(STAGE))" "$(BUILD)" "$(QUICK)"
+
+demo: deps
+	@$(MAKE) --no-print-directory all
+	@for s in $(STAGES); do bash lib/tools/lesson.sh "$$s" "$(BUILD)" 1 || exit 1; done
+	@bash lib/tools/demo.sh "$(BUILD)" "$(STAGES)"
+
+slides: all
+	@bash lib/tools/slides.sh "$(BUILD)" "$(STAGES)"
+
+bench: all
+	@bash lib/tools/bench.sh "$(BUILD)"
+
+assignments:
+	@bash lib/tools/mkassign.sh solutions assignments
+
+handout:
+	@bash lib/tools/handout.sh "$(BUILD)"
+
+clean:
+	rm -rf build
+
+help:
+	@echo "make deps | all | check | test STAGE=NN | grade [SUBMISSION=dir|x.tar.gz] [STAGE=NN] [ISOLATE=1]"
+	@echo "make grade-all SUBS=dir | lesson STAGE=NN [QUICK=1] | demo | slides | bench | assignments | handout | clean"
+	@echo "IMPL=solutions|assignments (now: $(CONFIG)); IMPL_NN=... for one stage; SANITIZE=1 for ASan+UBSan"

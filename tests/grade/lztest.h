@@ -1,0 +1,53 @@
+/* lztest.h — how a lozenge test suite is written (Check, with points).
+ *
+ * A test file includes this header and defines tests with LZ_TEST(name) ... END_TEST.
+ * Tests register themselves; the runner (tests/grade/runner.c) builds one Check
+ * test case per rubric line, in fork mode, with the rubric's timeout, so a crash,
+ * an abort (LZ_TODO) or an endless loop costs that test only.
+ *
+ * The rubric (tests/NN-name/rubric, plus tests/NN-name/hidden/rubric for tests the
+ * handout leaves out) is a whitespace table, '#' comments:
+ *
+ *     # test                        points  visibility  timeout_s
+ *     kahan_exact_on_cancellation   3       visible     5
+ *
+ * visibility is Gradescope's: visible | hidden | after_due_date | after_published.
+ * Every LZ_TEST must be in a rubric and every rubric line must name an LZ_TEST: the
+ * runner refuses to run otherwise.
+ *
+ * Failure messages speak physics: say what was measured, what was expected and the
+ * likely cause ("energy grew by 3e-2 over 1e4 steps; velocity Verlet stays below
+ * 1e-4 at dt = 0.01 — is the second half-kick using the new force?").
+ *
+ * Runner command line:  SUITE --rubric FILE [--rubric FILE ...] [--only TEST]
+ *                       [--machine [--log FILE]]
+ * Student view (default): a line per test, its points and its message, then
+ * "Score: X/Y" and "N passed, M failed"; exit 0 only when every test passed.
+ * --machine (the grader's view): the children's stdout and stderr go to FILE
+ * (default /dev/null); the parent then prints, on its own stdout,
+ *     LZBEGIN
+ *     LZRESULT <tab> test <tab> pass|fail|error|timeout <tab> message (one line)
+ *     ...
+ *     LZEND <tab> ran <tab> N
+ * The runner installs handlers that turn a GSL error and an LZ_TODO() into a test
+ * failure with a message, and a quiet lz_error handler (tests of bad input read
+ * the message with lz_error_message()).
+ */
+#ifndef LZTEST_H
+#define LZTEST_H
+
+#include <check.h>
+#include "lz/error.h"
+
+void lz_test_register(const char *name, const TTest *test);
+
+#define LZ_TEST(tname)                                                         \
+	static const TTest *tname;                                             \
+	static void tname##_register(void) __attribute__((constructor));       \
+	static void tname##_register(void) { lz_test_register(#tname, tname); } \
+	START_TEST(tname)
+
+/* Relative difference |a - b| / max(|b|, tiny), for messages and tolerances. */
+double lz_test_reldiff(double a, double b);
+
+#endif
