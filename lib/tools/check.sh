@@ -5,9 +5,11 @@
 set -uo pipefail
 build=$1
 stages=$2
-passed=0
+passed=0   # tests, summed over the steps' own "N passed, M failed" lines
 failed=0
 failures=()
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
 
 # Under the sanitizers everything runs a few times slower.
 if [[ "$build" == *sanitize* ]]; then
@@ -18,12 +20,21 @@ step() {  # step NAME COMMAND...: run it, count it
 	local name=$1
 	shift
 	echo "== $name"
-	local t0=$SECONDS
-	if "$@"; then
+	local t0=$SECONDS status=0
+	"$@" 2>&1 | tee "$log" || status=1
+	local counts
+	counts=$(grep -Eo '^([a-z]+: )?[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1 | grep -Eo '[0-9]+ passed, [0-9]+ failed')
+	if [ -n "$counts" ]; then
+		passed=$((passed + ${counts%% passed*}))
+		local f=${counts##*, }
+		failed=$((failed + ${f%% failed}))
+	elif [ "$status" -eq 0 ]; then
 		passed=$((passed + 1))
+	fi
+	if [ "$status" -eq 0 ]; then
 		echo "== $name: ok ($((SECONDS - t0)) s)"
 	else
-		failed=$((failed + 1))
+		[ -n "$counts" ] && [ "${counts##*, }" != "0 failed" ] || failed=$((failed + 1))
 		failures+=("$name")
 		echo "== $name: FAILED ($((SECONDS - t0)) s)"
 	fi
@@ -46,8 +57,8 @@ step "stub audit" bash tests/grade/audit.sh "$build" "$stages"
 step "grader fixtures" bash tests/grade/fixtures.sh "$build"
 
 echo
-if [ "$failed" -ne 0 ]; then
+if [ ${#failures[@]} -ne 0 ]; then
 	printf 'check FAILED: %s\n' "${failures[@]}"
 fi
 echo "check: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+[ ${#failures[@]} -eq 0 ]
