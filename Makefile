@@ -70,6 +70,8 @@ LINK = @mkdir -p $(@D); echo "  LD      $@"; $(CC) $(LDFLAGS) -o $@ $(filter %.o
 
 $(BUILD)/obj/lib/%.o: lib/src/%.c $(BUILD)/flags.stamp
 	$(COMPILE)
+# `lz list` finds the scenes of this tree from anywhere ($LZ_SCENES overrides).
+$(BUILD)/obj/lib/cli.o: EXTRA_INC = -DLZ_SCENE_DIR='"$(abspath datasets/scenes)"'
 # Stage objects are named <stage>-<file>.o so that archive members never collide.
 define stage_rule
 $(BUILD)/obj/$(2)/$(1)-%.o: $(2)/$(1)/%.c $(BUILD)/flags.stamp
