@@ -10,6 +10,7 @@ SHELL := /bin/bash
 .SUFFIXES:
 MAKEFLAGS += --no-builtin-rules
 .DELETE_ON_ERROR:
+.SECONDARY:
 
 SANITIZE ?= 0
 ifeq ($(SANITIZE),1)

@@ -5,6 +5,11 @@
 set -uo pipefail
 build=$1
 stages=$2
+if [ ! -d solutions ]; then
+	echo "make check runs the reference solutions, which the student handout leaves out;" >&2
+	echo "students run 'make test STAGE=NN' and 'make grade'." >&2
+	exit 2
+fi
 passed=0   # tests, summed over the steps' own "N passed, M failed" lines
 failed=0
 failures=()

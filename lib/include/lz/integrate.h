@@ -102,7 +102,8 @@ int lz_step_symplectic_euler(lz_md *s, double dt);
 
 /* Position (Störmer) Verlet: r(t+dt) = 2 r(t) - r(t-dt) + dt² a(t); v <- the central
  * difference (r(t+dt) - r(t-dt)) / (2dt), the velocity at t; r_prev <- r(t);
- * a = F(r(t+dt)). Second order, time reversible. Uses s->scratch. */
+ * a = F(r(t+dt)). Second order, time reversible. s->scratch may hold a copy of r(t)
+ * if wanted; one pass per coordinate needs none. */
 int lz_step_verlet(lz_md *s, double dt);
 
 /* Velocity Verlet: v += dt/2 a(t); r += dt v; a = F(r(t+dt)); v += dt/2 a(t+dt).

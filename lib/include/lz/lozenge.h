@@ -67,9 +67,11 @@ const char *lz_ratio_str(lz_ratio a, char *buf, size_t size);
  *     Σ_i terms - q_T(t + h_T dt/2) = c · dt^p · x^(k_T + p)(t) + O(dt^(p+1)),
  * the error of the target itself. Writes p to *order, c (exact, non-zero) to
  * *leading and the derivative k_T + p to *deriv. Examines derivatives up to
- * max_deriv (<= 20, so that factorials stay exact); when every coefficient up to
- * there vanishes, returns LZ_EDOM. LZ_EINVAL on a malformed formula (nterms out of
- * 1..LZ_TERMS_MAX, a column out of range, a weight with den <= 0).
+ * max_deriv (0..20, so that factorials stay exact); when every coefficient up to
+ * there vanishes, returns LZ_EDOM — and also when a coefficient does not fit the
+ * 64-bit rationals (huge weights or time offsets). LZ_EINVAL on a malformed formula
+ * (nterms out of 1..LZ_TERMS_MAX, a column out of range, a weight with den <= 0) or
+ * max_deriv out of 0..20.
  * p <= 0 means the formula is not even consistent. Cost O(nterms · max_deriv). */
 int lz_formula_order(const lz_formula *f, int max_deriv, int *order,
                      lz_ratio *leading, int *deriv);

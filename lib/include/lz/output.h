@@ -51,13 +51,18 @@ typedef struct {
 	char tmp[4096];    /* where they are written meanwhile: final + ".partial-PID" */
 } lz_rundir;
 
-/* Create the parents of `out` and the temporary directory. */
+/* Create the parents of `out` and the temporary directory. LZ_EINVAL, creating
+ * nothing, when `out` is /, . or .., or exists and is not a run directory (a file, or
+ * a non-empty directory without summary.json): lz never deletes what it did not
+ * write (think of --out ~). */
 int lz_rundir_begin(lz_rundir *d, const char *out);
 /* tmp/name into buf (LZ_EINVAL if it does not fit). */
 int lz_rundir_file(const lz_rundir *d, const char *name, char *buf, size_t size);
-/* Replace `final` (removed recursively if it exists) by the temporary directory. */
+/* Replace `final` (removed recursively if it exists, after the same check as begin)
+ * by the temporary directory. */
 int lz_rundir_commit(lz_rundir *d);
-/* Remove the temporary directory and everything in it. */
+/* Remove the temporary directory and everything in it; does nothing after a commit
+ * or a failed begin, so a caller may call it on every failure path. */
 void lz_rundir_abort(lz_rundir *d);
 
 /* Remove a directory tree (like rm -rf); LZ_OK if it did not exist. */

@@ -41,6 +41,8 @@ int lz_lj_force(size_t n, int dim, const double *r, double *a, double *u,
  * or a centred square lattice (2D, n = 2m²).
  * LZ_EINVAL when n is not of that form (the message lists the nearest allowed n). */
 int lz_lattice_start(double *r, size_t n, int dim, double box);
+/* The check lz_lattice_start makes, without positions (for a scene's check). */
+int lz_lattice_check(size_t n, int dim);
 
 /* Maxwell-Boltzmann velocities at temperature T (k_B = m = 1): Gaussian draws,
  * total momentum removed, then scaled so the kinetic temperature is exactly T

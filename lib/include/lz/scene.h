@@ -65,7 +65,7 @@ double lz_scene_real(const lz_scene *s, const char *key);
 long long lz_scene_int(const lz_scene *s, const char *key);
 int lz_scene_bool(const lz_scene *s, const char *key);
 const char *lz_scene_text(const lz_scene *s, const char *key);
-int lz_scene_enum(const lz_scene *s, const char *key);  /* index into choices */
+int lz_scene_enum(const lz_scene *s, const char *key);  /* index into choices; -1: no value */
 unsigned long lz_scene_seed(const lz_scene *s, const char *key);
 /* 1 when the key has a value (given, or a non-empty default). */
 int lz_scene_has(const lz_scene *s, const char *key);
@@ -77,7 +77,8 @@ int lz_scene_given(const lz_scene *s, const char *key);
 int lz_scene_fail(const lz_scene *s, const char *key, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
-/* Write every parameter of a bound scene (given or default) into a summary. */
+/* Write every parameter of a bound scene (given or default) into a summary: "method"
+ * first, then the table's keys in order; null for an optional key without a value. */
 void lz_scene_json(const lz_scene *s, lz_json *j);
 
 #endif

@@ -1,0 +1,432 @@
+/* cli.c — the `lz` command: run a scene, list the scenes, describe the methods.
+ *
+ * Every failure ends as one line "lz: message" on stderr and exit status 2 (bad
+ * input) or 1 (a run that failed); a run validates everything before it creates a
+ * directory, and a failed run leaves none behind.
+ */
+#include <dirent.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "lz/cli.h"
+#include "lz/error.h"
+#include "lz/method.h"
+#include "lz/output.h"
+#include "lz/rng.h"
+#include "lz/scene.h"
+#include "lz/timer.h"
+
+#ifndef LZ_SCENE_DIR
+#define LZ_SCENE_DIR "datasets/scenes"
+#endif
+
+/* lz_cli_main's own status: the message is a usage error, show the usage too. */
+enum { LZ_CLI_USAGE = -1 };
+
+static const char lz_cli_usage_text[] =
+	"usage: lz run SCENE [key=value ...] [--out DIR] [--quiet]\n"
+	"       lz list\n"
+	"       lz help [METHOD]\n";
+
+/* The code of the last lz_error, for calls that report failure by returning NULL. */
+static _Thread_local int lz_cli_code;
+
+/* The CLI prints the message once, at the end; the handler only keeps the code. */
+static void lz_cli_record(int code, const char *message)
+{
+	lz_cli_code = code;
+}
+
+const char *lz_scene_dir(void)
+{
+	const char *env = getenv("LZ_SCENES");
+	return env && *env ? env : LZ_SCENE_DIR;
+}
+
+/* Report a usage error: the message, then the usage lines. */
+static int lz_cli_usage(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static int lz_cli_usage(const char *fmt, ...)
+{
+	char msg[512];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	lz_error(LZ_EINVAL, "%s", msg);
+	return LZ_CLI_USAGE;
+}
+
+/* "verlet, walk, ..." */
+static void lz_cli_method_names(char *buf, size_t size)
+{
+	size_t n, len = 0;
+	const lz_method *const *m = lz_methods(&n);
+	buf[0] = '\0';
+	for (size_t i = 0; i < n && len < size; i++)
+		len += (size_t)snprintf(buf + len, size - len, "%s%s", i ? ", " : "", m[i]->name);
+}
+
+/* ---- lz run ---- */
+
+typedef struct {
+	const char *scene;      /* SCENE as given */
+	const char *out;        /* --out, or NULL for build/runs/<name> */
+	int quiet;
+	char **overrides;       /* key=value arguments, in order */
+	int noverrides;
+} lz_cli_args;
+
+static int lz_cli_run_parse(int argc, char **argv, lz_cli_args *a)
+{
+	for (int i = 0; i < argc; i++) {
+		const char *arg = argv[i];
+		if (strcmp(arg, "--out") == 0) {
+			if (i + 1 == argc)
+				return lz_cli_usage("--out needs a directory");
+			a->out = argv[++i];
+		} else if (strncmp(arg, "--out=", 6) == 0) {
+			a->out = arg + 6;
+		} else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "-q") == 0) {
+			a->quiet = 1;
+		} else if (arg[0] == '-' && arg[1]) {
+			return lz_cli_usage("unknown option '%s'", arg);
+		} else if (!a->scene) {
+			a->scene = arg;
+		} else if (strchr(arg, '=')) {
+			a->overrides[a->noverrides++] = argv[i];
+		} else {
+			return lz_cli_usage("unexpected argument '%s' (after SCENE come "
+			                    "key=value overrides)", arg);
+		}
+	}
+	if (!a->scene)
+		return lz_cli_usage("lz run needs a scene");
+	return LZ_OK;
+}
+
+/* SCENE as a path if it names a file, else as a name in the scene directory. */
+static int lz_cli_scene_path(const char *arg, char *path, size_t size)
+{
+	struct stat st;
+	if (strlen(arg) >= size)
+		return lz_error(LZ_EINVAL, "scene path too long (%zu bytes)", strlen(arg));
+	if (stat(arg, &st) == 0 || strchr(arg, '/')) {
+		snprintf(path, size, "%s", arg);
+		return LZ_OK;
+	}
+	const char *dir = lz_scene_dir();
+	snprintf(path, size, "%s/%s.scene", dir, arg);
+	if (stat(path, &st) == 0)
+		return LZ_OK;
+	snprintf(path, size, "%s/%s", dir, arg);
+	if (stat(path, &st) == 0)
+		return LZ_OK;
+	return lz_error(LZ_EINVAL, "no scene '%s': not a file, and no %s.scene in %s "
+	                "(`lz list` shows the scenes)", arg, arg, dir);
+}
+
+/* Read SCENE, apply the overrides, find its method and bind: every check a run
+ * needs, done before anything is written. */
+static int lz_cli_run_load(const lz_cli_args *a, lz_scene **sp, const lz_method **mp)
+{
+	char path[4096], names[512];
+	int rc = lz_cli_scene_path(a->scene, path, sizeof path);
+	if (rc != LZ_OK)
+		return rc;
+	lz_scene *s = *sp = lz_scene_read(path);
+	if (!s)
+		return lz_cli_code;
+	for (int i = 0; i < a->noverrides; i++)
+		if ((rc = lz_scene_set(s, a->overrides[i], "command line")) != LZ_OK)
+			return rc;
+	lz_cli_method_names(names, sizeof names);
+	const char *method = lz_scene_method(s);
+	if (!method)
+		return lz_error(LZ_EINVAL, "%s: no 'method' key; say which engine runs the scene "
+		                "(method = %s)", path, names);
+	const lz_method *m = *mp = lz_method_find(method);
+	if (!m)
+		return lz_scene_fail(s, "method", "unknown method '%s'; the methods are: %s",
+		                     method, names);
+	return lz_scene_bind(s, m);
+}
+
+/* An automatic seed is logged so that seed=N repeats the run. */
+static void lz_cli_log_seeds(const lz_scene *s, const lz_method *m)
+{
+	for (size_t i = 0; i < m->nkeys; i++) {
+		const char *key = m->keys[i].name;
+		if (m->keys[i].type == LZ_KEY_SEED && strcmp(lz_scene_text(s, key), "auto") == 0)
+			fprintf(stderr, "lz: %s = %lu (auto); pass %s=%lu to repeat this run\n", key,
+			        lz_scene_seed(s, key), key, lz_scene_seed(s, key));
+	}
+}
+
+/* Remove the partial directory, keeping the message of the failure itself (removing
+ * may report errors of its own). */
+static int lz_cli_run_fail(lz_rundir *d, int rc)
+{
+	char msg[2048];
+	if (lz_cli_code == LZ_OK)  /* a method that failed without saying why */
+		lz_error(rc, "the run failed (%s)", lz_strerror(rc));
+	snprintf(msg, sizeof msg, "%s", lz_error_message());
+	lz_rundir_abort(d);
+	return lz_error(rc, "%s", msg);
+}
+
+/* Run a bound scene into its directory: parameters, the method's results, wall_s. */
+static int lz_cli_run_execute(const lz_scene *s, const lz_method *m, const char *out,
+                              int quiet)
+{
+	lz_rundir d;
+	char path[4200];
+	int rc = lz_rundir_begin(&d, out);
+	if (rc != LZ_OK)
+		return rc;
+	if ((rc = lz_rundir_file(&d, "summary.json", path, sizeof path)) != LZ_OK)
+		return lz_cli_run_fail(&d, rc);
+	lz_json *j = lz_json_open(path);
+	if (!j)
+		return lz_cli_run_fail(&d, lz_cli_code);
+	lz_scene_json(s, j);
+	lz_run run = {&d, j, quiet};
+	lz_cli_code = LZ_OK;
+	double t0 = lz_wall_now();
+	rc = m->run(s, &run);
+	lz_json_num(j, "wall_s", lz_wall_now() - t0);
+	int rc_json = lz_json_end(j);
+	rc = rc != LZ_OK ? rc : rc_json;
+	if (rc == LZ_OK)
+		rc = lz_rundir_commit(&d);
+	if (rc != LZ_OK)
+		return lz_cli_run_fail(&d, rc);
+	if (!quiet)
+		fprintf(stderr, "lz: results in %s/\n", d.final);
+	return LZ_OK;
+}
+
+static int lz_cli_run(int argc, char **argv)
+{
+	lz_cli_args a = {0};
+	a.overrides = malloc((size_t)(argc + 1) * sizeof *a.overrides);
+	if (!a.overrides)
+		return lz_error(LZ_ENOMEM, "no memory for the arguments");
+	lz_scene *s = NULL;
+	const lz_method *m = NULL;
+	int rc = lz_cli_run_parse(argc, argv, &a);
+	if (rc == LZ_OK)
+		rc = lz_cli_run_load(&a, &s, &m);
+	if (rc == LZ_OK) {
+		char out[4096];
+		snprintf(out, sizeof out, "build/runs/%s", lz_scene_name(s));
+		if (!a.quiet)
+			lz_cli_log_seeds(s, m);
+		rc = lz_cli_run_execute(s, m, a.out ? a.out : out, a.quiet);
+	}
+	lz_scene_free(s);
+	free(a.overrides);
+	return rc;
+}
+
+/* ---- lz list ---- */
+
+static int lz_cli_is_scene_file(const struct dirent *e)
+{
+	size_t n = strlen(e->d_name);
+	return n > 6 && e->d_name[0] != '.' && strcmp(e->d_name + n - 6, ".scene") == 0;
+}
+
+/* The first '#' comment of a scene file, without the '#': its description. */
+static void lz_cli_scene_description(const char *path, char *buf, size_t size)
+{
+	FILE *f = fopen(path, "r");
+	buf[0] = '\0';
+	char line[512];
+	while (f && fgets(line, sizeof line, f)) {
+		char *p = line + strspn(line, " \t");
+		if (*p != '#')
+			continue;
+		p += strspn(p, "# \t");
+		p[strcspn(p, "\r\n")] = '\0';
+		snprintf(buf, size, "%s", p);
+		break;
+	}
+	if (f)
+		fclose(f);
+}
+
+static int lz_cli_list(void)
+{
+	const char *dir = lz_scene_dir();
+	struct dirent **files;
+	int n = scandir(dir, &files, lz_cli_is_scene_file, alphasort);
+	if (n < 0)
+		return lz_error(LZ_EIO, "cannot list the scenes in '%s' (set LZ_SCENES to the "
+		                "scene directory)", dir);
+	int width = 8;
+	for (int i = 0; i < n; i++)
+		if ((int)strlen(files[i]->d_name) - 6 > width)
+			width = (int)strlen(files[i]->d_name) - 6;
+	if (n == 0)
+		printf("no scenes in %s\n", dir);
+	for (int i = 0; i < n; i++) {
+		char path[4096], about[512];
+		snprintf(path, sizeof path, "%s/%s", dir, files[i]->d_name);
+		lz_scene *s = lz_scene_read(path);
+		if (s)
+			lz_cli_scene_description(path, about, sizeof about);
+		else
+			snprintf(about, sizeof about, "(broken: %s)", lz_error_message());
+		const char *method = s ? lz_scene_method(s) : NULL;
+		printf("%-*.*s  %-12s  %s\n", width, (int)strlen(files[i]->d_name) - 6,
+		       files[i]->d_name, method ? method : "?", about);
+		lz_scene_free(s);
+		free(files[i]);
+	}
+	free(files);
+	return LZ_OK;
+}
+
+/* ---- lz help ---- */
+
+/* Columns of `lz help METHOD`, a Markdown table that also reads well in a terminal. */
+enum { COL_KEY, COL_TYPE, COL_DEFAULT, COL_RANGE, COL_HELP, NCOLS };
+static const char *const lz_cli_help_heads[NCOLS] = {"key", "type", "default", "range",
+                                                     "meaning"};
+
+/* Characters, not bytes: units are UTF-8 (σ, τ). */
+static int lz_cli_text_width(const char *s)
+{
+	int w = 0;
+	for (; *s; s++)
+		w += ((unsigned char)*s & 0xc0) != 0x80;
+	return w;
+}
+
+/* The cells of one key's row (each 256 bytes). */
+static void lz_cli_help_row(const lz_key *k, char cell[NCOLS][256])
+{
+	static const char *const types[] = {"int", "real", "enum", "seed", "bool", "text"};
+	const char *unit = k->unit && *k->unit ? k->unit : NULL;
+	snprintf(cell[COL_KEY], 256, "%s", k->name);
+	snprintf(cell[COL_TYPE], 256, "%s", (unsigned)k->type < 6 ? types[k->type] : "?");
+	snprintf(cell[COL_DEFAULT], 256, "%s", !k->def ? "required" : *k->def ? k->def : "none");
+	switch (k->type) {
+	case LZ_KEY_INT:
+	case LZ_KEY_REAL:
+		snprintf(cell[COL_RANGE], 256, "%c%g, %g%c%s%s", k->min_open ? '(' : '[', k->min,
+		         k->max, k->max_open ? ')' : ']', unit ? " " : "", unit ? unit : "");
+		break;
+	case LZ_KEY_ENUM: {
+		/* Markdown tables split cells at '|': list the choices with commas. */
+		char *w = cell[COL_RANGE], *end = w + 250;
+		for (const char *c = k->choices ? k->choices : ""; *c && w < end; c++) {
+			if (*c == '|')
+				*w++ = ',', *w++ = ' ';
+			else
+				*w++ = *c;
+		}
+		*w = '\0';
+		break;
+	}
+	case LZ_KEY_SEED:
+		snprintf(cell[COL_RANGE], 256, "auto or [1, %lu]", LZ_SEED_MAX);
+		break;
+	case LZ_KEY_BOOL:
+		snprintf(cell[COL_RANGE], 256, "true, false");
+		break;
+	default:
+		snprintf(cell[COL_RANGE], 256, "text");
+		break;
+	}
+	snprintf(cell[COL_HELP], 256, "%s", k->help ? k->help : "");
+}
+
+static void lz_cli_help_line(char cell[NCOLS][256], const int *width)
+{
+	for (int c = 0; c < NCOLS; c++)
+		printf("| %s%*s ", cell[c], width[c] - lz_cli_text_width(cell[c]), "");
+	printf("|\n");
+}
+
+static void lz_cli_help_method(const lz_method *m)
+{
+	char (*rows)[NCOLS][256] = calloc(m->nkeys + 2, sizeof *rows);
+	if (!rows) {
+		lz_error(LZ_ENOMEM, "no memory for the key table");
+		return;
+	}
+	int width[NCOLS] = {0};
+	for (int c = 0; c < NCOLS; c++)
+		snprintf(rows[0][c], 256, "%s", lz_cli_help_heads[c]);
+	for (size_t i = 0; i < m->nkeys; i++)
+		lz_cli_help_row(&m->keys[i], rows[i + 2]);
+	for (size_t i = 0; i < m->nkeys + 2; i++)
+		for (int c = 0; c < NCOLS; c++)
+			if (lz_cli_text_width(rows[i][c]) > width[c])
+				width[c] = lz_cli_text_width(rows[i][c]);
+	for (int c = 0; c < NCOLS; c++)
+		memset(rows[1][c], '-', (size_t)width[c]);
+	printf("method %s: %s\n\nkey = value lines; `method = %s` picks this method.\n\n",
+	       m->name, m->help, m->name);
+	for (size_t i = 0; i < m->nkeys + 2; i++)
+		lz_cli_help_line(rows[i], width);
+	free(rows);
+}
+
+static int lz_cli_help(int argc, char **argv)
+{
+	if (argc > 1)
+		return lz_cli_usage("lz help takes at most one method");
+	if (argc == 1) {
+		const lz_method *m = lz_method_find(argv[0]);
+		char names[512];
+		lz_cli_method_names(names, sizeof names);
+		if (!m)
+			return lz_error(LZ_EINVAL, "unknown method '%s'; the methods are: %s", argv[0],
+			                names);
+		lz_cli_help_method(m);
+		return LZ_OK;
+	}
+	size_t n;
+	const lz_method *const *m = lz_methods(&n);
+	fputs(lz_cli_usage_text, stdout);
+	printf("\nmethods (`lz help METHOD` lists a method's keys):\n");
+	for (size_t i = 0; i < n; i++)
+		printf("  %-12s %s\n", m[i]->name, m[i]->help);
+	printf("\nscenes are looked up in %s (`lz list`)\n", lz_scene_dir());
+	return LZ_OK;
+}
+
+/* ---- main ---- */
+
+static int lz_cli_dispatch(int argc, char **argv)
+{
+	if (argc < 2)
+		return lz_cli_usage("say what to do");
+	const char *cmd = argv[1];
+	if (strcmp(cmd, "run") == 0)
+		return lz_cli_run(argc - 2, argv + 2);
+	if (strcmp(cmd, "list") == 0)
+		return argc == 2 ? lz_cli_list() : lz_cli_usage("lz list takes no arguments");
+	if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0)
+		return lz_cli_help(argc - 2, argv + 2);
+	return lz_cli_usage("unknown command '%s'", cmd);
+}
+
+int lz_cli_main(int argc, char **argv)
+{
+	lz_error_handler *previous = lz_set_error_handler(lz_cli_record);
+	lz_cli_code = LZ_OK;
+	int rc = lz_cli_dispatch(argc, argv);
+	lz_set_error_handler(previous);
+	if (rc == LZ_OK)
+		return 0;
+	fprintf(stderr, "lz: %s\n", lz_error_message());
+	if (rc == LZ_CLI_USAGE)
+		fputs(lz_cli_usage_text, stderr);
+	return rc == LZ_CLI_USAGE || rc == LZ_EINVAL || rc == LZ_ESYNTAX ? 2 : 1;
+}

@@ -1,0 +1,22 @@
+/* method.c — the registry of engines, in course order. A stage adds its method here. */
+#include <string.h>
+
+#include "lz/method.h"
+
+static const lz_method *const lz_registry[] = {
+	&lz_method_verlet,
+};
+
+const lz_method *lz_method_find(const char *name)
+{
+	for (size_t i = 0; name && i < sizeof lz_registry / sizeof lz_registry[0]; i++)
+		if (strcmp(lz_registry[i]->name, name) == 0)
+			return lz_registry[i];
+	return NULL;
+}
+
+const lz_method *const *lz_methods(size_t *n)
+{
+	*n = sizeof lz_registry / sizeof lz_registry[0];
+	return lz_registry;
+}

@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# bench.sh BUILD — the speed suite (make bench, DESIGN §8).
+#
+# Reads datasets/scenes/bench.list: one benchmark per line, `SCENE key=v1,v2,...
+# [key=value ...]`; keys with comma lists are swept, every combination runs REPEATS
+# times (default 3) as `lz run SCENE key=value ... --quiet`. From each run's
+# summary.json it takes the speed figures (steps_per_s, atomsteps_per_s, and any
+# other *_per_s), state_bytes_per_particle and wall_s, and reports the median over the
+# repeats: a table on stdout and BUILD/bench/NN-name.json per stage (the stage is the
+# NN- prefix of the scene name), with the machine and the date. Benchmarks measure
+# speed only; correctness is the tests' job.
+set -euo pipefail
+
+if [ $# != 1 ]; then
+	echo "usage: bench.sh BUILD   e.g. bench.sh build" >&2
+	exit 2
+fi
+build=$1
+list=datasets/scenes/bench.list
+lz=$build/bin/lz
+repeats=${REPEATS:-3}
+out=$build/bench
+
+[ -x "$lz" ] || { echo "bench.sh: $lz is missing (run make first)" >&2; exit 2; }
+[ -f "$list" ] || { echo "bench.sh: no benchmark list $list" >&2; exit 2; }
+[[ $repeats =~ ^[1-9][0-9]*$ ]] || { echo "bench.sh: REPEATS=$repeats must be a positive integer" >&2; exit 2; }
+rm -rf "$out"
+mkdir -p "$out/runs"
+
+cpu=$(grep -m1 -E '^(model name|Hardware|cpu model)' /proc/cpuinfo 2>/dev/null | sed 's/.*: *//')
+cpu=${cpu:-unknown}
+cores=$(nproc 2>/dev/null || echo 0)
+when=$(date -u '+%Y-%m-%dT%H:%M:%SZ')
+
+# The value of a numeric key in a flat JSON file ("" when absent or null).
+json_num() {
+	sed -n "s/^[[:space:]]*\"$2\"[[:space:]]*:[[:space:]]*\([-0-9.eE+]*\)[[:space:]]*,\{0,1\}[[:space:]]*$/\1/p" "$1" | head -1
+}
+# The *_per_s keys of a summary, in file order.
+speed_keys() { sed -n 's/^[[:space:]]*"\([a-z_]*_per_s\)".*/\1/p' "$1"; }
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print ""; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+json_str() { printf '"%s"' "$(printf '%s' "$1" | sed 's/\\/\\\\/g; s/"/\\"/g')"; }
+
+# Every combination of the swept keys: one line of key=value words per run.
+expand() {
+	local combos=("") word key values v c next
+	for word in "$@"; do
+		key=${word%%=*}
+		values=${word#*=}
+		next=()
+		IFS=',' read -r -a vs <<<"$values"
+		for c in "${combos[@]}"; do
+			for v in "${vs[@]}"; do
+				next+=("${c:+$c }$key=$v")
+			done
+		done
+		combos=("${next[@]}")
+	done
+	printf '%s\n' "${combos[@]}"
+}
+
+results=$out/results.tsv  # stage, scene, params, then key=value figures
+: >"$results"
+failed=0
+printf '%-14s %-46s %12s %14s %7s %8s\n' scene parameters steps/s atom-steps/s B/part wall_s
+lineno=0
+while IFS= read -r line || [ -n "$line" ]; do
+	lineno=$((lineno + 1))
+	line=${line%%#*}
+	read -r -a words <<<"$line"
+	[ ${#words[@]} = 0 ] && continue
+	scene=${words[0]}
+	stage_nn=${scene%%-*}
+	if ! [[ $stage_nn =~ ^[0-9][0-9]$ ]]; then
+		echo "bench.sh: $list:$lineno: scene '$scene' should be named NN-..." >&2
+		failed=1
+		continue
+	fi
+	while IFS= read -r params; do
+		read -r -a kv <<<"$params"
+		tag=$(printf '%s' "$scene-$params" | tr ' =,/' '_-__')
+		figures=()
+		for ((r = 1; r <= repeats; r++)); do
+			dir=$out/runs/$tag-$r
+			if ! "$lz" run "$scene" "${kv[@]}" --out "$dir" --quiet >"$dir.log" 2>&1; then
+				echo "bench.sh: $scene $params failed: $(head -1 "$dir.log")" >&2
+				failed=1
+				continue 2
+			fi
+			figures+=("$dir/summary.json")
+		done
+		row="$stage_nn	$scene	$params"
+		for key in $(speed_keys "${figures[0]}") state_bytes_per_particle wall_s; do
+			m=$(for f in "${figures[@]}"; do json_num "$f" "$key"; done | median)
+			row="$row	$key=$m"
+		done
+		printf '%s\n' "$row" >>"$results"
+		printf '%s\n' "$row" | awk -F '\t' '{
+			for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+			printf "%-14s %-46s %12.4g %14.4g %7s %8.3f\n", $2, $3, f["steps_per_s"],
+			       f["atomsteps_per_s"], f["state_bytes_per_particle"], f["wall_s"] }'
+	done < <(expand "${words[@]:1}")
+done <"$list"
+
+# One JSON file per stage.
+for nn in $(cut -f1 "$results" | sort -u); do
+	name=$(cd lessons 2>/dev/null && ls -d "$nn"-* 2>/dev/null | head -1)
+	name=${name:-$nn}
+	file=$out/$name.json
+	{
+		printf '{\n  "stage": %s,\n  "date": %s,\n  "cpu": %s,\n  "nproc": %s,\n  "repeats": %s,\n  "statistic": "median",\n  "results": [\n' \
+			"$(json_str "$name")" "$(json_str "$when")" "$(json_str "$cpu")" "$cores" "$repeats"
+		awk -F '\t' -v nn="$nn" '$1 == nn {
+			line = sprintf("    {\"scene\": \"%s\", \"params\": \"%s\"", $2, $3)
+			for (i = 4; i <= NF; i++) {
+				split($i, kv, "="); v = kv[2] == "" ? "null" : kv[2]
+				line = line sprintf(", \"%s\": %s", kv[1], v)
+			}
+			rows[++n] = line "}"
+		} END { for (i = 1; i <= n; i++) print rows[i] (i < n ? "," : "") }' "$results"
+		printf '  ]\n}\n'
+	} >"$file"
+	echo "bench: wrote $file"
+done
+echo "machine: $cpu, $cores cores; $when; median of $repeats runs each"
+if [ "$failed" != 0 ]; then
+	echo "bench.sh: some benchmarks failed (see $out/runs/*.log)" >&2
+	exit 1
+fi

@@ -1,0 +1,46 @@
+/* support.h — helpers shared by the tests of the library infrastructure:
+ * temporary directories and files, and a strict little JSON reader to check what
+ * the writers produce without trusting the writers. */
+#ifndef LZ_TESTS_LIB_SUPPORT_H
+#define LZ_TESTS_LIB_SUPPORT_H
+
+#include <stddef.h>
+
+/* A fresh directory /tmp/lz-test-XXXXXX (fails the test if it cannot be made). */
+const char *lzt_tmpdir(void);
+/* dir/name in one of 32 rotating static buffers: valid for the next 31 calls, and
+ * nothing to free (so that tests stay leak-free under LeakSanitizer). */
+const char *lzt_path(const char *dir, const char *name);
+/* Write n bytes to path (fails the test on error). */
+void lzt_write(const char *path, const void *data, size_t n);
+void lzt_write_str(const char *path, const char *text);
+/* The whole file, NUL-terminated, malloc'd; NULL if it cannot be read. */
+char *lzt_slurp(const char *path, size_t *n);
+/* 1 if path exists (as anything, links not followed). */
+int lzt_exists(const char *path);
+/* Entries of dir whose names contain `part` (e.g. ".partial-"). */
+int lzt_count_matching(const char *dir, const char *part);
+
+/* The code of the last lz_error (the runner's handler is quiet; this one records). */
+void lzt_record_errors(void);
+int lzt_last_code(void);
+
+/* ---- a flat JSON object, read strictly (RFC 8259 grammar) ---- */
+typedef enum { LZT_NUM, LZT_STR, LZT_TRUE, LZT_FALSE, LZT_NULL } lzt_kind;
+typedef struct {
+	char key[128];
+	lzt_kind kind;
+	double num;       /* LZT_NUM */
+	char text[1024];  /* LZT_STR decoded to UTF-8; LZT_NUM the number as written */
+} lzt_member;
+typedef struct {
+	int n;
+	lzt_member m[256];
+} lzt_json;
+
+/* Parse text as one flat object; NULL with a reason in err when it is not valid JSON
+ * (or has duplicate keys, or nested values). Free with free(). */
+lzt_json *lzt_json_parse(const char *text, char *err, size_t errsize);
+const lzt_member *lzt_json_get(const lzt_json *j, const char *key);
+
+#endif

@@ -1,0 +1,335 @@
+/* test_cli.c — the lz command, called in-process: a good scene runs and writes its
+ * summary; every kind of bad input exits 2 with one line on stderr and leaves no
+ * directory behind; the same seed gives the same summary. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "lz/cli.h"
+#include "lz/output.h"
+#include "lztest.h"
+#include "support.h"
+
+#define HARMONIC "method = verlet\npotential = harmonic\nintegrator = velocity-verlet\n" \
+                 "dt = 0.01\nsteps = 1000\nseed = 7\n"
+
+static const char *dir;  /* this test's temporary directory */
+static char out_text[16384], err_text[16384];
+
+/* Read a capture file into buf and remove it. */
+static void take(const char *path, char *buf, size_t size)
+{
+	char *text = lzt_slurp(path, NULL);
+	snprintf(buf, size, "%s", text ? text : "");
+	free(text);
+	unlink(path);
+}
+
+/* lz_cli_main on the NULL-terminated arguments after "lz"; stdout and stderr are
+ * captured into out_text and err_text. */
+static int lz(const char *arg, ...)
+{
+	char *argv[32] = {"lz"};
+	int argc = 1;
+	va_list ap;
+	va_start(ap, arg);
+	for (const char *a = arg; a && argc < 31; a = va_arg(ap, const char *))
+		argv[argc++] = (char *)a;
+	va_end(ap);
+	argv[argc] = NULL;
+	if (!dir)
+		dir = lzt_tmpdir();
+	const char *out = lzt_path(dir, ".stdout"), *err = lzt_path(dir, ".stderr");
+	fflush(stdout);
+	fflush(stderr);
+	int keep_out = dup(STDOUT_FILENO), keep_err = dup(STDERR_FILENO);
+	ck_assert(freopen(out, "w", stdout) && freopen(err, "w", stderr));
+	int rc = lz_cli_main(argc, argv);
+	fflush(stdout);
+	fflush(stderr);
+	dup2(keep_out, STDOUT_FILENO);
+	dup2(keep_err, STDERR_FILENO);
+	close(keep_out);
+	close(keep_err);
+	take(out, out_text, sizeof out_text);
+	take(err, err_text, sizeof err_text);
+	return rc;
+}
+
+/* Remove the temporary directory; the next scene() makes a new one. */
+static void cleanup(void)
+{
+	ck_assert_msg(lz_rmtree(dir) == LZ_OK, "cannot remove %s: %s", dir, lz_error_message());
+	dir = NULL;
+}
+
+static const char *scene(const char *name, const char *text)
+{
+	if (!dir)
+		dir = lzt_tmpdir();
+	const char *path = lzt_path(dir, name);
+	lzt_write_str(path, text);
+	return path;
+}
+
+static lzt_json *summary(const char *run_dir)
+{
+	char err[128], *text = lzt_slurp(lzt_path(run_dir, "summary.json"), NULL);
+	ck_assert_msg(text != NULL, "no summary.json in %s", run_dir);
+	lzt_json *j = lzt_json_parse(text, err, sizeof err);
+	ck_assert_msg(j != NULL, "summary.json is not valid JSON (%s):\n%s", err, text);
+	free(text);
+	return j;
+}
+
+static double number(const lzt_json *j, const char *key)
+{
+	const lzt_member *m = lzt_json_get(j, key);
+	ck_assert_msg(m && m->kind == LZT_NUM, "summary.json has no number '%s'", key);
+	return m->num;
+}
+
+LZ_TEST(cli_runs_harmonic_scene)
+{
+	const char *path = scene("harmonic.scene", HARMONIC), *out = lzt_path(dir, "out");
+	int rc = lz("run", path, "--out", out, "--quiet", NULL);
+	ck_assert_msg(rc == 0, "lz run on a good harmonic scene exited %d: %s", rc, err_text);
+	lzt_json *j = summary(out);
+	const lzt_member *m = lzt_json_get(j, "method");
+	ck_assert_msg(m && m->kind == LZT_STR && strcmp(m->text, "verlet") == 0,
+	              "summary.json should start with method = verlet");
+	ck_assert_msg(strcmp(j->m[0].key, "method") == 0, "'method' is not the first key");
+	ck_assert_msg(number(j, "seed") == 7, "the seed written is %g, not the seed given (7)",
+	              number(j, "seed"));
+	double err = number(j, "energy_rel_err_max"), wall = number(j, "wall_s");
+	ck_assert_msg(err >= 0 && err < 1e-3, "energy_rel_err_max = %g for velocity Verlet at "
+	              "dt = 0.01 on the harmonic oscillator", err);
+	ck_assert_msg(wall >= 0 && number(j, "steps_per_s") > 0, "wall_s or steps_per_s not > 0");
+	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a .partial directory is left");
+	ck_assert_msg(err_text[0] == '\0', "--quiet, yet stderr has '%s'", err_text);
+	free(j);
+	cleanup();
+}
+END_TEST
+
+LZ_TEST(cli_same_seed_same_summary)
+{
+	const char *path = scene("h.scene", HARMONIC);
+	const char *a = lzt_path(dir, "a"), *b = lzt_path(dir, "b");
+	ck_assert(lz("run", path, "--out", a, "--quiet", "steps=2000", NULL) == 0);
+	ck_assert(lz("run", path, "--out", b, "--quiet", "steps=2000", NULL) == 0);
+	lzt_json *ja = summary(a), *jb = summary(b);
+	ck_assert_msg(ja->n == jb->n, "the two runs wrote %d and %d keys", ja->n, jb->n);
+	for (int i = 0; i < ja->n; i++) {
+		const char *key = ja->m[i].key;
+		size_t n = strlen(key);
+		ck_assert_msg(strcmp(key, jb->m[i].key) == 0, "key %d: '%s' vs '%s'", i, key,
+		              jb->m[i].key);
+		if (strcmp(key, "wall_s") == 0 || (n > 6 && strcmp(key + n - 6, "_per_s") == 0))
+			continue;  /* timings */
+		ck_assert_msg(ja->m[i].kind == jb->m[i].kind && strcmp(ja->m[i].text, jb->m[i].text) == 0,
+		              "'%s' differs between two runs with seed 7: %s vs %s — a run must "
+		              "be reproducible bit for bit", key, ja->m[i].text, jb->m[i].text);
+	}
+	ck_assert_msg(number(ja, "steps") == 2000, "the override steps=2000 was not applied");
+	free(ja);
+	free(jb);
+	cleanup();
+}
+END_TEST
+
+LZ_TEST(cli_replaces_previous_run_and_logs_auto_seed)
+{
+	const char *path = scene("h.scene", "method = verlet\npotential = harmonic\n"
+	                         "integrator = velocity-verlet\ndt = 0.01\nsteps = 100\n");
+	const char *out = lzt_path(dir, "runs/h");
+	ck_assert(lz("run", path, "--out", out, NULL) == 0);
+	ck_assert_msg(lz("run", path, "--out", out, NULL) == 0,
+	              "a second run into the same directory failed: %s", err_text);
+	lzt_json *j = summary(out);
+	char want[128];
+	snprintf(want, sizeof want, "lz: seed = %.0f (auto); pass seed=%.0f to repeat this run\n",
+	         number(j, "seed"), number(j, "seed"));
+	ck_assert_msg(strstr(err_text, want) != NULL, "stderr should log the seed used:\n"
+	              "  %s\ngot\n  %s", want, err_text);
+	ck_assert_msg(lzt_count_matching(lzt_path(dir, "runs"), "h.") == 0,
+	              "a temporary directory was left next to the run");
+	free(j);
+	cleanup();
+}
+END_TEST
+
+LZ_TEST(cli_default_output_directory)
+{
+	const char *path = scene("spring.scene", HARMONIC);
+	ck_assert(chdir(dir) == 0);
+	int rc = lz("run", path, "--quiet", NULL);
+	ck_assert_msg(rc == 0, "exit %d: %s", rc, err_text);
+	ck_assert_msg(lzt_exists(lzt_path(dir, "build/runs/spring/summary.json")),
+	              "without --out the run should go to build/runs/<scene name>/");
+	ck_assert(chdir("/") == 0);
+	cleanup();
+}
+END_TEST
+
+LZ_TEST(cli_scene_by_name)
+{
+	scene("spring.scene", HARMONIC);
+	setenv("LZ_SCENES", dir, 1);
+	ck_assert_msg(strcmp(lz_scene_dir(), dir) == 0, "lz_scene_dir() ignores $LZ_SCENES");
+	int rc = lz("run", "spring", "--out", lzt_path(dir, "o"), "--quiet", NULL);
+	ck_assert_msg(rc == 0, "a scene named without its path was not found in $LZ_SCENES: %s",
+	              err_text);
+	cleanup();
+}
+END_TEST
+
+/* A refused run: exit 2, one line "lz: ..." on stderr (containing `expect`), and
+ * nothing written. */
+static void refused(const char *expect, const char *path, const char *extra)
+{
+	const char *out = lzt_path(dir, "out");
+	lz_set_error_handler(NULL);  /* the CLI must not print a message twice */
+	int rc = extra ? lz("run", path, "--out", out, extra, NULL)
+	               : lz("run", path, "--out", out, NULL);
+	ck_assert_msg(rc == 2, "bad input (%s) should exit 2, exited %d: %s", expect, rc, err_text);
+	ck_assert_msg(strncmp(err_text, "lz: ", 4) == 0 && strstr(err_text, expect),
+	              "stderr should be 'lz: ...%s...', got '%s'", expect, err_text);
+	const char *nl = strchr(err_text, '\n');
+	ck_assert_msg(nl && !strstr(err_text + 1, "lz: ") && (!nl[1] || strstr(nl, "usage: ")),
+	              "the message should be printed once, on one line (then the usage, for "
+	              "a usage error): '%s'", err_text);
+	ck_assert_msg(!lzt_exists(out), "a refused run created its output directory");
+	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a refused run left a .partial");
+	cleanup();
+}
+
+LZ_TEST(cli_refuses_garbage_file)
+{
+	char junk[256];
+	for (int i = 0; i < 256; i++)
+		junk[i] = (char)(i * 37 + 11);
+	scene("junk.scene", "");
+	lzt_write(lzt_path(dir, "junk.scene"), junk, sizeof junk);
+	refused("not a text line", lzt_path(dir, "junk.scene"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_truncated_file)
+{
+	refused("must be one of", scene("t.scene", "method = verlet\npotential = harm"), NULL);
+	refused("expected 'key = value'", scene("t.scene", "method = verlet\npoten"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_nan_value)
+{
+	refused(":4: key 'dt' = nan must be a finite number",
+	        scene("n.scene", "method = verlet\npotential = harmonic\nsteps = 10\ndt = nan\n"),
+	        NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_duplicate_key)
+{
+	refused(":3: key 'potential' given twice (first at line 2)",
+	        scene("d.scene", "method = verlet\npotential = harmonic\npotential = lj\n"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_unknown_key)
+{
+	refused("unknown key 'stepz' for method verlet (did you mean 'steps'?)",
+	        scene("u.scene", HARMONIC "stepz = 10\n"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_out_of_range_value)
+{
+	refused("key 'dt' = -0.1 is out of range (0,", scene("r.scene", HARMONIC), "dt=-0.1");
+}
+END_TEST
+
+LZ_TEST(cli_refuses_unknown_method)
+{
+	refused(":1: unknown method 'warp'; the methods are: verlet",
+	        scene("m.scene", "method = warp\ndt = 0.1\n"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_scene_without_method)
+{
+	refused("no 'method' key", scene("m.scene", "dt = 0.1\n"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_missing_scene)
+{
+	scene("x.scene", HARMONIC);
+	refused("no scene", "no-such-scene", NULL);
+	scene("x.scene", HARMONIC);
+	refused("No such file", lzt_path(dir, "missing/x.scene"), NULL);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_bad_option_and_usage)
+{
+	refused("unknown option '--frobnicate'", scene("h.scene", HARMONIC), "--frobnicate");
+	refused("command line: no key before '='", scene("h.scene", HARMONIC), "=5");
+	refused("unexpected argument 'steps'", scene("h.scene", HARMONIC), "steps");
+	const char *calls[][3] = {{NULL}, {"run", NULL}, {"fly", NULL}, {"list", "x", NULL},
+	                          {"help", "a", "b"}};
+	for (int i = 0; i < 5; i++) {
+		int rc = lz(calls[i][0], calls[i][1], calls[i][2], NULL);
+		ck_assert_msg(rc == 2 && strstr(err_text, "usage: lz run SCENE"),
+		              "call %d: a usage error should exit 2 and print the usage (exit %d, "
+		              "stderr '%s')", i, rc, err_text);
+	}
+	int rc = lz("run", scene("h.scene", HARMONIC), "--out", NULL);
+	ck_assert_msg(rc == 2 && strstr(err_text, "--out needs a directory"),
+	              "--out without a directory: exit %d, '%s'", rc, err_text);
+}
+END_TEST
+
+LZ_TEST(cli_refuses_user_directory_as_out)
+{
+	const char *path = scene("h.scene", HARMONIC), *mine = lzt_path(dir, "mine");
+	const char *file = lzt_path(mine, "thesis.tex");
+	ck_assert(mkdir(mine, 0777) == 0);
+	lzt_write_str(file, "precious");
+	int rc = lz("run", path, "--out", mine, "--quiet", NULL);
+	ck_assert_msg(rc == 2, "--out at a user's non-empty directory should exit 2, got %d", rc);
+	ck_assert_msg(lzt_exists(file), "lz deleted a file in the user's directory");
+	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a .partial directory is left");
+	cleanup();
+}
+END_TEST
+
+LZ_TEST(cli_list_and_help)
+{
+	scene("spring.scene", "# A mass on a spring\n" HARMONIC);
+	scene("broken.scene", "method = verlet\nthis is not a scene\n");
+	scene("notes.txt", "not a scene");
+	setenv("LZ_SCENES", dir, 1);
+	ck_assert_msg(lz("list", NULL) == 0, "lz list failed: %s", err_text);
+	ck_assert_msg(strstr(out_text, "spring") && strstr(out_text, "verlet") &&
+	              strstr(out_text, "A mass on a spring"),
+	              "lz list should show name, method and description:\n%s", out_text);
+	ck_assert_msg(strstr(out_text, "broken") && strstr(out_text, "broken:"),
+	              "a broken scene should be listed as broken:\n%s", out_text);
+	ck_assert_msg(!strstr(out_text, "notes"), "lz list showed a file that is not a .scene");
+	ck_assert_msg(lz("help", NULL) == 0 && strstr(out_text, "verlet"),
+	              "lz help should list the methods:\n%s", out_text);
+	ck_assert_msg(lz("help", "verlet", NULL) == 0, "lz help verlet failed: %s", err_text);
+	ck_assert_msg(strstr(out_text, "| dt ") && strstr(out_text, "| potential "),
+	              "lz help verlet should list the keys:\n%s", out_text);
+	ck_assert_msg(lz("help", "warp", NULL) == 2 && strstr(err_text, "unknown method 'warp'"),
+	              "lz help of an unknown method should exit 2: '%s'", err_text);
+	setenv("LZ_SCENES", lzt_path(dir, "none"), 1);
+	ck_assert_msg(lz("list", NULL) != 0, "lz list of a missing directory should fail");
+	cleanup();
+}
+END_TEST
