@@ -153,7 +153,7 @@ test: need-stage
 grade:
 	@$(MAKE) --no-print-directory $(REPORT)
 	@bash tests/grade/grade.sh --build "$(BUILD)" --submission "$(SUBMISSION)" \
-	  --stage "$(STAGE)" --isolate "$(ISOLATE)"
+	  --stage "$(STAGE)" --isolate "$(ISOLATE)" $(if $(OUT),--out "$(OUT)")
 
 grade-all:
 	@if [ -z "$(SUBS)" ]; then echo "make grade-all: SUBS=dir (one sub-directory or .tar.gz per student)" >&2; exit 2; fi

@@ -23,19 +23,18 @@
  * operand that t could not hold is recovered exactly and kept in comp. */
 void lz_kahan_add(lz_kahan *k, double x)
 {
-	/* Hint: t = sum + x rounds; (big - t) + small recovers exactly what was lost,
-	 * where big is whichever of sum and x is larger in magnitude. Kahan's original
-	 * always assumes big = sum and fails on 1 + 1e100 + 1 - 1e100. Add the lost part
-	 * to comp, never back into sum. See lessons/01-lozenge/README.md, "Floating point". */
+	/* Hint: t = sum + x rounds; (big - t) + small is exactly what was lost, big being
+	 * the larger of sum and x in magnitude (Neumaier). Add it to comp, keep t in sum.
+	 * Kahan's original assumes big = sum and fails on 1, 1e100, 1, -1e100.
+	 * See lessons/01-lozenge/README.md §6. */
 	LZ_TODO();
 }
 
 /* Pairwise summation: the two halves summed recursively, short blocks naively. */
 double lz_sum_pairwise(const double *x, size_t n)
 {
-	/* Hint: for n <= 8 add the terms left to right; otherwise split at h = n/2 and
-	 * return the sum of x[0..h) plus the sum of x[h..n). Check n = 0, 1 and odd n:
-	 * an off-by-one at the split drops or repeats a term.
-	 * See lessons/01-lozenge/README.md, "Floating point". */
+	/* Hint: n <= 8: add left to right. Otherwise h = n / 2 and the sum of x[0..h) plus
+	 * the sum of x[h..n), both pairwise. Try n = 0, 1, 9 and odd n: an off-by-one at
+	 * the split drops or repeats a term. See lessons/01-lozenge/README.md §6. */
 	LZ_TODO();
 }

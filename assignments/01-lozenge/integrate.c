@@ -26,11 +26,9 @@
  * Both updates use the old state. */
 int lz_step_euler(lz_md *s, double dt)
 {
-	/* Hint: move r with the OLD velocity first, then kick v with the old a, then
-	 * evaluate the force at the new positions with lz_md_force(s) and advance s->t.
-	 * Using the new v for r turns this into symplectic Euler — a different scheme.
-	 * lz_axpy (lz/vec.h) does y += alpha x.
-	 * See lessons/01-lozenge/README.md, "Taylor expansions and Euler". */
+	/* Hint: drift r with the OLD v, kick v with the old a, then lz_md_force(s) and
+	 * s->t += dt. Using the new v for r turns this into symplectic Euler.
+	 * lz_axpy (lz/vec.h) is y += alpha x. See lessons/01-lozenge/README.md §1, §3. */
 	LZ_TODO();
 }
 
@@ -38,10 +36,9 @@ int lz_step_euler(lz_md *s, double dt)
  * a = F(r(t+dt)). */
 int lz_step_symplectic_euler(lz_md *s, double dt)
 {
-	/* Hint: the same two updates as Euler in the other order: kick v with a(t), then
-	 * drift r with the NEW v. This one swap makes the scheme symplectic: its energy
-	 * error stays bounded instead of growing.
-	 * See lessons/01-lozenge/README.md, "Stability and the shadow energy". */
+	/* Hint: Euler's two updates in the other order: kick v with a(t), then drift r
+	 * with the NEW v, then the force. The swap bounds the energy error (a shadow
+	 * energy is conserved). See lessons/01-lozenge/README.md §1, §5. */
 	LZ_TODO();
 }
 
@@ -49,11 +46,10 @@ int lz_step_symplectic_euler(lz_md *s, double dt)
  * v(t) = (r(t+dt) - r(t-dt)) / (2 dt), r_prev <- r(t), then a = F(r(t+dt)). */
 int lz_step_verlet(lz_md *s, double dt)
 {
-	/* Hint: per coordinate you need r(t+dt), the central-difference v(t) and then
-	 * r_prev = old r — keep the old r until v is computed. Group terms of like size:
-	 * r + ((r - r_prev) + dt² a) loses fewer digits than (2r - r_prev) + dt² a.
-	 * Forgetting to update r_prev breaks the recursion.
-	 * See lessons/01-lozenge/README.md, "The Verlet scheme" and "Floating point". */
+	/* Hint: per coordinate, next = r + ((r - r_prev) + dt² a) (small terms first),
+	 * v = (next - r_prev) / (2 dt), then r_prev = r and r = next: keep the old r until
+	 * v is done. A stale r_prev breaks the recursion.
+	 * See lessons/01-lozenge/README.md §2, §6. */
 	LZ_TODO();
 }
 
@@ -61,10 +57,9 @@ int lz_step_verlet(lz_md *s, double dt)
  * half kick v += dt/2 a(t+dt). */
 int lz_step_velocity_verlet(lz_md *s, double dt)
 {
-	/* Hint: kick–drift–force–kick. The second half-kick must use the NEW
-	 * acceleration, so it comes after lz_md_force(s) (and only if that succeeded).
-	 * Both kicks are dt/2.
-	 * See lessons/01-lozenge/README.md, "The lozenge diagram" (velocity Verlet). */
+	/* Hint: half kick, drift, lz_md_force(s), half kick. The second half kick must
+	 * use the NEW a, so it comes after the force (and only if that succeeded).
+	 * See lessons/01-lozenge/README.md §3, §4. */
 	LZ_TODO();
 }
 
@@ -72,9 +67,8 @@ int lz_step_velocity_verlet(lz_md *s, double dt)
  * r(t+dt) = r(t) + dt v(t+dt/2); a = F(r(t+dt)). */
 int lz_step_leapfrog(lz_md *s, double dt)
 {
-	/* Hint: s->v holds v(t - dt/2) (lz_md_start shifted it), so one full kick takes
-	 * it to t + dt/2, and the drift uses that mid-step velocity. Do not add half
-	 * kicks: the halves live in the state layout, not in the step.
-	 * See lessons/01-lozenge/README.md, "The lozenge diagram" (leapfrog). */
+	/* Hint: s->v holds v(t - dt/2): one full kick takes it to t + dt/2 and the drift
+	 * uses it. No half kicks here: the half step lives in the state layout, which
+	 * lz_md_start prepared. See lessons/01-lozenge/README.md §3, §4. */
 	LZ_TODO();
 }

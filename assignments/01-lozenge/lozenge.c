@@ -22,10 +22,9 @@
 int lz_formula_order(const lz_formula *f, int max_deriv, int *order,
                      lz_ratio *leading, int *deriv)
 {
-	/* Hint: expand every sample about t: q_k(t + h dt/2) = Σ_j (h dt/2)^j / j!
-	 * x^(k+j)(t); a term's dt^(k - k_T) then puts x^(D) at dt^(D - k_T). Collect the
-	 * coefficient of each derivative D = 0, 1, ... with lz_ratio_* (exact); the first
-	 * non-zero one gives p = D - k_T. Do not forget the target, or the 1/2 per half step.
-	 * See lessons/01-lozenge/README.md, "The lozenge diagram". */
+	/* Hint: expand each sample, q_k(t + h dt/2) = Σ_j (h dt/2)^j / j! x^(k+j)(t), times
+	 * its weight's dt^(k - k_T); for D = 0, 1, ..., max_deriv add up the coefficients of
+	 * x^(D) exactly (lz_ratio_*), minus the target's. The first non-zero one gives
+	 * p = D - k_T. See lessons/01-lozenge/README.md §4. */
 	LZ_TODO();
 }

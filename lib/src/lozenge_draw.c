@@ -15,8 +15,9 @@
 #include "lz/error.h"
 #include "lz/lozenge.h"
 
-#define W(n, d) {(n), (d)}
-#define TERM(c, h, n, d) {LZ_COL_##c, (h), W(n, d)}
+/* A term: column, time offset in half steps, weight n/d (lz/lozenge.h). The rows
+ * below read like the formulas, e.g. Verlet's r(+2) = 2 r(0) - 1 r(-2) + 1 a(0). */
+#define TERM(c, h, n, d) {LZ_COL_##c, (h), {(n), (d)}}
 
 static const lz_scheme schemes[] = {
 	{"verlet", "Verlet (Störmer)", 1, {
@@ -292,18 +293,23 @@ static void write_axes(FILE *out, int lo, int hi)
 	        py(hi) - 0.3, py(lo) + 0.3);
 }
 
-static void write_panel(FILE *out, const lz_scheme *s, int i, int ns)
+/* The canvas: pixels per panel across, per half step down, per legend row. */
+enum { PANEL_PX = 380, MIN_WIDTH_PX = 600, HALF_STEP_PX = 75, FRAME_PX = 200,
+       LEGEND_ROW_PX = 26, CHAR_PX = 7 };
+
+static void write_panel(FILE *out, const lz_scheme *s, int i, int ns, double bottom)
 {
 	double width = 1.0 / ns;
-	fprintf(out, "set origin %g,0.07\nset size %g,0.93\n", width * i, width);
+	fprintf(out, "set origin %g,%g\nset size %g,%g\n", width * i, bottom, width, 1 - bottom);
 	fprintf(out, "unset arrow\nunset label\nset title \"%s\" font ',13'\n", s->title);
 	fprintf(out, "set format y %s\n", i == 0 ? "" : "''");
 	label_spots spots = {0};
 	for (int k = 0; k < s->nformulas; k++) {
 		char text[512];
 		formula_text(&s->f[k], text, sizeof text);
-		fprintf(out, "set label \"%s\" at graph 0.5, graph %g center tc rgb '#%06x'\n",
-		        text, -0.04 - 0.06 * k, colours[k]);
+		/* Centred on the panel, not on its plot area (which the y labels shift). */
+		fprintf(out, "set label \"%s\" at screen %g, graph %g center font ',10' "
+		        "tc rgb '#%06x'\n", text, width * (i + 0.5), -0.04 - 0.06 * k, colours[k]);
 		for (int j = 0; j < s->f[k].nterms; j++)
 			write_arrow(out, &s->f[k].term[j], &s->f[k], colours[k], &spots);
 	}
@@ -313,26 +319,49 @@ static void write_panel(FILE *out, const lz_scheme *s, int i, int ns)
 	        "$square%d w p pt 5 ps 1.4 lc rgb '#202020'\n", i, i, i);
 }
 
-/* The key, in a strip under the panels: each marker drawn with its meaning. */
-static void write_legend(FILE *out)
+/* The key: each marker with its meaning, in rows under the panels. */
+static const struct {
+	const char *style, *text;
+} legend[] = {
+	{"pt 6 ps 0.8 lc rgb '#a0a0a0'", "skeleton (r, a at whole steps; v, b at half steps)"},
+	{"pt 7 ps 1.4 lc rgb '#202020'", "sample used"},
+	{"pt 5 ps 1.4 lc rgb '#202020'", "sample off its column's grid (v at a whole step)"},
+	{"pt 6 ps 2.4 lw 2.5 lc rgb '#1f5fa8'", "target (the arrows carry the weights)"},
+};
+#define NLEGEND ((int)(sizeof legend / sizeof legend[0]))
+
+/* Lays the key out in character cells across a canvas `cols` wide: the x of each
+ * entry and its row. Returns the number of rows. */
+static int legend_layout(int cols, double *x, int *row)
 {
-	static const struct {
-		const char *style, *text;
-	} keys[] = {
-		{"pt 6 ps 0.8 lc rgb '#a0a0a0'", "skeleton: r, a at whole steps, v, b at half steps"},
-		{"pt 7 ps 1.4 lc rgb '#202020'", "a sample the scheme uses"},
-		{"pt 5 ps 1.4 lc rgb '#202020'", "a sample off its column's grid (v at a whole step)"},
-		{"pt 6 ps 2.6 lw 2.5 lc rgb '#1f5fa8'", "the target; arrows carry the weights"},
-	};
-	fprintf(out, "set origin 0,0\nset size 1,0.07\nunset title\nunset arrow\nunset label\n"
+	int rows = 1;
+	double at = 2.0;
+	for (int k = 0; k < NLEGEND; k++) {
+		double need = 3.0 + (double)strlen(legend[k].text);
+		if (at + need > cols && at > 2.0) {
+			rows++;
+			at = 2.0;
+		}
+		x[k] = at;
+		row[k] = rows - 1;
+		at += need + 4.0;
+	}
+	return rows;
+}
+
+static void write_legend(FILE *out, int cols, double height)
+{
+	double x[NLEGEND];
+	int row[NLEGEND], rows = legend_layout(cols, x, row);
+	fprintf(out, "set origin 0,0\nset size 1,%g\nunset title\nunset arrow\nunset label\n"
 	        "unset x2tics\nunset ytics\nunset grid\nset margins 0,0,0,0\n"
-	        "set xrange [0:4]\nset yrange [0:1]\n");
-	fprintf(out, "plot ");
-	for (int k = 0; k < 4; k++) {
-		fprintf(out, "%s'+' u (%g):(0.5) every ::0::0 w p %s", k ? ", " : "", k + 0.1,
-		        keys[k].style);
-		fprintf(out, ", '+' u (%g):(0.5):(\"%s\") every ::0::0 w labels left font ',11' "
-		        "tc rgb '#303030'", k + 0.16, keys[k].text);
+	        "set xrange [0:%d]\nset yrange [0:%d]\nplot ", height, cols, rows);
+	for (int k = 0; k < NLEGEND; k++) {
+		double y = rows - row[k] - 0.5;
+		fprintf(out, "%s'+' u (%g):(%g) every ::0::0 w p %s", k ? ", " : "", x[k], y,
+		        legend[k].style);
+		fprintf(out, ", '+' u (%g):(%g):(\"%s\") every ::0::0 w labels left font ',11' "
+		        "tc rgb '#303030'", x[k] + 1.8, y, legend[k].text);
 	}
 	fprintf(out, "\n");
 }
@@ -352,16 +381,21 @@ int lz_lozenge_gnuplot(FILE *out, const lz_scheme *const *s, int ns, const char 
 			                i, LZ_FORMULAS_MAX, LZ_TERMS_MAX);
 	int lo, hi;
 	time_range(s, ns, &lo, &hi);
+	int width = PANEL_PX * ns > MIN_WIDTH_PX ? PANEL_PX * ns : MIN_WIDTH_PX;
+	double x[NLEGEND];
+	int row[NLEGEND], rows = legend_layout(width / CHAR_PX, x, row);
+	int height = FRAME_PX + HALF_STEP_PX * (hi - lo) + LEGEND_ROW_PX * rows;
+	double bottom = (double)(LEGEND_ROW_PX * rows + 8) / height;
 	fprintf(out, "# The lozenge diagram (thesis fig. 1.1), written by lz_lozenge_gnuplot.\n"
 	        "set terminal pngcairo size %d,%d enhanced font 'Sans,11'\n"
-	        "set output '%s'\nset multiplot\n", 380 * ns, 230 + 75 * (hi - lo), png);
+	        "set output '%s'\nset multiplot\n", width, height, png);
 	write_skeleton(out, lo, hi);
 	for (int i = 0; i < ns; i++)
 		write_samples(out, s[i], i);
 	write_axes(out, lo, hi);
 	for (int i = 0; i < ns; i++)
-		write_panel(out, s[i], i, ns);
-	write_legend(out);
+		write_panel(out, s[i], i, ns, bottom);
+	write_legend(out, width / CHAR_PX, bottom);
 	fprintf(out, "unset multiplot\n");
 	return ferror(out) ? lz_error(LZ_EIO, "lozenge diagram: writing the script failed")
 	                   : LZ_OK;

@@ -103,9 +103,11 @@ while IFS= read -r line || [ -n "$line" ]; do
 done <"$list"
 
 # One JSON file per stage.
-for nn in $(cut -f1 "$results" | sort -u); do
-	name=$(cd lessons 2>/dev/null && ls -d "$nn"-* 2>/dev/null | head -1)
-	name=${name:-$nn}
+cut -f1 "$results" | sort -u | while read -r nn; do
+	name=$nn
+	for dir in lessons/"$nn"-*; do
+		[ -d "$dir" ] && name=$(basename "$dir") && break
+	done
 	file=$out/$name.json
 	{
 		printf '{\n  "stage": %s,\n  "date": %s,\n  "cpu": %s,\n  "nproc": %s,\n  "repeats": %s,\n  "statistic": "median",\n  "results": [\n' \

@@ -115,7 +115,7 @@ emit_plots() {
 			printf '<figure class="%s"><a href="img/%s-%s.png"><img src="img/%s-%s.png" alt="%s"></a>' \
 				"$(png_shape "$out/$name.png")" "$nn" "$name" "$nn" "$name" "$name"
 		else
-			printf '<figure><div class="missing">%s.png was not made (is gnuplot installed? see %s/%s.gp.log)</div>' \
+			printf '<figure><div class="missing">%s.png was not made: its experiment failed or gnuplot is missing (see %s/%s.gp.log)</div>' \
 				"$name" "$out" "$name"
 		fi
 		printf '<figcaption><b>%s</b> — %s</figcaption></figure>\n' "$name" "${caption:-no caption}"
@@ -277,7 +277,7 @@ EOF
 	echo '<h1>lozenge</h1>'
 	echo '<p>Fast simulation of hard particles: a course in C. Each stage is a lesson with a graded assignment;'
 	echo 'students build a small library stage by stage and run every experiment on their own code.</p>'
-	echo '<p>This page shows every lesson’s experiments at demo size, as measured on this machine by'
+	echo '<p>This page shows the experiments of every lesson at demo size, as measured on this machine by'
 	echo '<code>make demo</code>: the plots, the headline figures each experiment checked against known values,'
 	echo 'and the speed and accuracy of the ready-made scenes.</p><nav>'
 	for stage in $stages; do
@@ -292,4 +292,6 @@ EOF
 	echo '</body></html>'
 } >"$page"
 
-echo "demo: wrote $page ($(ls "$demo/img" | wc -l) plots)"
+shopt -s nullglob
+images=("$demo"/img/*.png)
+echo "demo: wrote $page (${#images[@]} plots)"

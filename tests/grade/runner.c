@@ -183,6 +183,11 @@ static void explain(const char *msg, char *out, size_t size)
 	else if (strstr(msg, "signal 8"))
 		snprintf(out, size, "crashed with an arithmetic exception (integer division by "
 		         "zero?) [%s]", msg);
+	else if (strstr(msg, "signal 25"))
+		snprintf(out, size, "stopped for writing far too much output (printing in a loop?) "
+		         "[%s]", msg);
+	else if (strstr(msg, "signal 24"))
+		snprintf(out, size, "stopped for using too much CPU time [%s]", msg);
 	else if (strstr(msg, "signal 6"))
 		snprintf(out, size, "aborted (an assert, a failed allocation, or LZ_TODO) [%s]", msg);
 	else if (strstr(msg, "timeout"))
