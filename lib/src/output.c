@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <ftw.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -100,10 +101,15 @@ int lz_data_close(lz_data *d)
 
 /* ---- summary.json ---- */
 
+/* Keys are remembered by a 64-bit hash, so a key written twice — which would make the
+ * object invalid JSON — is caught at lz_json_end. */
+#define JSON_KEYS_MAX 512
 struct lz_json {
 	FILE *f;
 	int own;  /* 1: lz_json_open made f, lz_json_end closes it */
 	int n;    /* members written so far */
+	uint64_t hash[JSON_KEYS_MAX];  /* of the first JSON_KEYS_MAX keys */
+	char twice[128];               /* the first key written twice, or "" */
 };
 
 lz_json *lz_json_begin(FILE *f)
@@ -116,6 +122,7 @@ lz_json *lz_json_begin(FILE *f)
 	j->f = f;
 	j->own = 0;
 	j->n = 0;
+	j->twice[0] = '\0';
 	fputc('{', f);
 	return j;
 }
@@ -153,9 +160,31 @@ static void lz_json_string(FILE *f, const char *s, const char *suffix)
 	fputc('"', f);
 }
 
+/* FNV-1a of key followed by suffix. */
+static uint64_t lz_json_hash(const char *key, const char *suffix)
+{
+	uint64_t h = 14695981039346656037ULL;
+	for (int part = 0; part < 2; part++, key = suffix)
+		for (const unsigned char *p = (const unsigned char *)key; p && *p; p++)
+			h = (h ^ *p) * 1099511628211ULL;
+	return h;
+}
+
+static void lz_json_remember(lz_json *j, const char *key, const char *suffix)
+{
+	uint64_t h = lz_json_hash(key, suffix);
+	int known = j->n < JSON_KEYS_MAX ? j->n : JSON_KEYS_MAX;
+	for (int i = 0; i < known && !j->twice[0]; i++)
+		if (j->hash[i] == h)
+			snprintf(j->twice, sizeof j->twice, "%s%s", key, suffix ? suffix : "");
+	if (j->n < JSON_KEYS_MAX)
+		j->hash[j->n] = h;
+}
+
 /* Start the member `key suffix`: separator, name, colon. */
 static void lz_json_key(lz_json *j, const char *key, const char *suffix)
 {
+	lz_json_remember(j, key, suffix);
 	fputs(j->n++ ? ",\n  " : "\n  ", j->f);
 	lz_json_string(j->f, key, suffix);
 	fputs(": ", j->f);
@@ -208,8 +237,15 @@ int lz_json_end(lz_json *j)
 	int bad = fflush(j->f) != 0 || ferror(j->f);
 	if (j->own)
 		bad |= fclose(j->f) != 0;
+	char twice[sizeof j->twice];
+	snprintf(twice, sizeof twice, "%s", j->twice);
 	free(j);
-	return bad ? lz_error(LZ_EIO, "writing a JSON summary failed (disk full?)") : LZ_OK;
+	if (bad)
+		return lz_error(LZ_EIO, "writing a JSON summary failed (disk full?)");
+	if (twice[0])
+		return lz_error(LZ_EINVAL, "the summary key '%s' was written twice (a JSON object "
+		                "needs unique keys)", twice);
+	return LZ_OK;
 }
 
 /* ---- run directories ---- */

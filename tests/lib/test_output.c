@@ -136,6 +136,36 @@ static void write_nothing(lz_json *j)
 {
 }
 
+/* A key written twice makes the object invalid JSON: the writer must say so, also
+ * when the second one comes from a value's _err companion. */
+LZ_TEST(json_duplicate_key_is_an_error)
+{
+	char *buf = NULL;
+	size_t n = 0;
+	FILE *f = open_memstream(&buf, &n);
+	lz_json *j = lz_json_begin(f);
+	lz_json_int(j, "steps", 10);
+	lz_json_num(j, "dt", 0.1);
+	lz_json_int(j, "steps", 10);
+	ck_assert_msg(lz_json_end(j) == LZ_EINVAL, "a summary with 'steps' twice was accepted");
+	ck_assert_msg(strstr(lz_error_message(), "'steps'") != NULL,
+	              "the error should name the key written twice; it says '%s'",
+	              lz_error_message());
+	j = lz_json_begin(f);
+	lz_json_num(j, "p_err", 1.0);
+	lz_json_err(j, "p", 2.0, 0.1);
+	ck_assert_msg(lz_json_end(j) == LZ_EINVAL, "'p_err' written by hand and by lz_json_err "
+	              "was accepted");
+	j = lz_json_begin(f);
+	lz_json_err(j, "p", 2.0, 0.1);
+	lz_json_num(j, "pressure", 1.0);
+	ck_assert_msg(lz_json_end(j) == LZ_OK, "distinct keys were refused: %s",
+	              lz_error_message());
+	fclose(f);
+	free(buf);
+}
+END_TEST
+
 LZ_TEST(json_empty_object_and_file)
 {
 	char *text = json_text(write_nothing, NULL), err[128];
