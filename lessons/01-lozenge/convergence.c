@@ -13,12 +13,12 @@
  */
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
 #include <gsl/gsl_fit.h>
 
 #include "lz/error.h"
 #include "lz/integrate.h"
+#include "lz/lesson.h"
 #include "lz/output.h"
 #include "lz/potential.h"
 
@@ -72,11 +72,10 @@ static double fit_slope(const double *dt, const double *err)
 	return c1;
 }
 
-static int write_data(const char *out, const double *dt,
-                      errors e[][LZ_NINTEGRATORS])
+static int write_data(lz_lesson *L, const double *dt, errors e[][LZ_NINTEGRATORS])
 {
 	const char *names[1 + 2 * LZ_NINTEGRATORS], *units[1 + 2 * LZ_NINTEGRATORS];
-	char label[2 * LZ_NINTEGRATORS][48], path[4096];
+	char label[2 * LZ_NINTEGRATORS][48];
 	names[0] = "dt";
 	units[0] = "tau";
 	for (int m = 0; m < LZ_NINTEGRATORS; m++) {
@@ -88,10 +87,9 @@ static int write_data(const char *out, const double *dt,
 		names[1 + LZ_NINTEGRATORS + m] = label[LZ_NINTEGRATORS + m];
 		units[1 + LZ_NINTEGRATORS + m] = "sigma";
 	}
-	snprintf(path, sizeof path, "%s/convergence.dat", out);
-	lz_data *d = lz_data_open(path, "harmonic oscillator, omega=1, x0=1, v0=0, T=10: "
-	                          "max relative energy error and |x(T)-cos T| vs dt",
-	                          1 + 2 * LZ_NINTEGRATORS, names, units);
+	lz_data *d = lz_lesson_data(L, "convergence.dat", "harmonic oscillator, omega=1, "
+	                            "x0=1, v0=0, T=10: max relative energy error and "
+	                            "|x(T)-cos T| vs dt", 1 + 2 * LZ_NINTEGRATORS, names, units);
 	if (!d)
 		return LZ_EIO;
 	for (int k = 0; k < NDT; k++) {
@@ -106,27 +104,23 @@ static int write_data(const char *out, const double *dt,
 }
 
 /* The fitted slopes as gnuplot variables, so the plot legend shows them. */
-static int write_fit_gp(const char *out, double (*slope)[2])
+static int write_fit_gp(lz_lesson *L, double (*slope)[2])
 {
-	char path[4096];
-	snprintf(path, sizeof path, "%s/convergence_fit.gp", out);
-	FILE *f = fopen(path, "w");
+	FILE *f = lz_lesson_fopen(L, "convergence_fit.gp");
 	if (!f)
-		return lz_error(LZ_EIO, "cannot write %s", path);
+		return LZ_EIO;
 	fprintf(f, "# fitted orders, written by the convergence driver\n");
 	for (int m = 0; m < LZ_NINTEGRATORS; m++)
 		fprintf(f, "sE%d = %.3f; sX%d = %.3f\n", m, slope[m][0], m, slope[m][1]);
-	return fclose(f) == 0 ? LZ_OK : lz_error(LZ_EIO, "cannot write %s", path);
+	return lz_lesson_fclose(L, f, "convergence_fit.gp");
 }
 
-static int write_json(const char *out, double (*slope)[2], int ok)
+static int write_json(lz_lesson *L, double (*slope)[2])
 {
-	char path[4096], key[64];
-	snprintf(path, sizeof path, "%s/convergence.json", out);
-	lz_json *j = lz_json_open(path);
+	char key[64];
+	lz_json *j = lz_lesson_json(L, "convergence.json");
 	if (!j)
 		return LZ_EIO;
-	lz_json_str(j, "check", ok ? "passed" : "FAILED");
 	lz_json_str(j, "system", "harmonic oscillator, omega=1, T=10");
 	for (int m = 0; m < LZ_NINTEGRATORS; m++) {
 		snprintf(key, sizeof key, "order_energy_%s", lz_integrator_name(m));
@@ -139,11 +133,9 @@ static int write_json(const char *out, double (*slope)[2], int ok)
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
 	double dt[NDT], slope[LZ_NINTEGRATORS][2];
 	errors e[NDT][LZ_NINTEGRATORS];
 	printf("convergence: harmonic oscillator omega = %g, x0 = 1, v0 = 0, T = %g\n",
@@ -160,7 +152,6 @@ int main(int argc, char **argv)
 				return 2;
 			}
 	}
-	int ok = 1;
 	printf("  %-17s %9s %9s %7s\n", "integrator", "energy", "position", "theory");
 	for (int m = 0; m < LZ_NINTEGRATORS; m++) {
 		double de[NDT], dx[NDT];
@@ -172,17 +163,10 @@ int main(int argc, char **argv)
 		slope[m][1] = fit_slope(dt, dx);
 		int good = fabs(slope[m][0] - theory_order[m]) < TOLERANCE &&
 		           fabs(slope[m][1] - theory_order[m]) < TOLERANCE;
-		ok = ok && good;
 		printf("  %-17s %9.3f %9.3f %7d  %s\n", lz_integrator_name(m), slope[m][0],
-		       slope[m][1], theory_order[m], good ? "ok" : "CHECK FAILED");
+		       slope[m][1], theory_order[m], lz_lesson_check(&L, good));
 	}
-	const char *out = argv[1];
-	if (write_data(out, dt, e) || write_fit_gp(out, slope) ||
-	    write_json(out, slope, ok)) {
-		fprintf(stderr, "convergence: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: fitted orders within %.1f of theory: %s\n", TOLERANCE,
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+	if (write_data(&L, dt, e) || write_fit_gp(&L, slope) || write_json(&L, slope))
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "fitted orders within %.1f of theory", TOLERANCE);
 }

@@ -24,6 +24,7 @@
 
 #include "lz/error.h"
 #include "lz/integrate.h"
+#include "lz/lesson.h"
 #include "lz/output.h"
 #include "lz/potential.h"
 #include "lz/rng.h"
@@ -174,17 +175,15 @@ static double spread_order(nve_stats st[NDT])
 	return c1;
 }
 
-static int write_table(const char *out, const size_t *ns, int nn,
-                       nve_stats st[][NPREC][NDT])
+static int write_table(lz_lesson *L, const size_t *ns, int nn, nve_stats st[][NPREC][NDT])
 {
 	static const char *names[] = {"N", "float", "dt", "sigma_E", "drift", "drift_err",
 	                              "T", "U"};
 	static const char *units[] = {"", "0/1", "tau", "eps/particle", "eps/(particle*tau)",
 	                              "eps/(particle*tau)", "eps/k_B", "eps/particle"};
-	char path[4096];
-	snprintf(path, sizeof path, "%s/ljnve.dat", out);
-	lz_data *d = lz_data_open(path, "LJ rho=0.8 rc=2.5 (cut and shifted), velocity Verlet,"
-	                          " NVE runs of 5.12 tau: spread and drift of E/N", 8, names, units);
+	lz_data *d = lz_lesson_data(L, "ljnve.dat", "LJ rho=0.8 rc=2.5 (cut and shifted), "
+	                            "velocity Verlet, NVE runs of 5.12 tau: spread and drift "
+	                            "of E/N", 8, names, units);
 	if (!d)
 		return LZ_EIO;
 	for (int a = 0; a < nn; a++)
@@ -198,10 +197,10 @@ static int write_table(const char *out, const size_t *ns, int nn,
 	return lz_data_close(d);
 }
 
-static int write_trace(const char *out, size_t n, double trace[NPREC][NDT][NTRACE])
+static int write_trace(lz_lesson *L, size_t n, double trace[NPREC][NDT][NTRACE])
 {
 	const char *names[1 + NPREC * NDT], *units[1 + NPREC * NDT];
-	char label[NPREC * NDT][32], path[4096], title[128];
+	char label[NPREC * NDT][32], title[128];
 	names[0] = "t";
 	units[0] = "tau";
 	for (int c = 0; c < NPREC * NDT; c++) {
@@ -210,9 +209,8 @@ static int write_trace(const char *out, size_t n, double trace[NPREC][NDT][NTRAC
 		names[1 + c] = label[c];
 		units[1 + c] = "eps/particle";
 	}
-	snprintf(path, sizeof path, "%s/ljnve_trace.dat", out);
 	snprintf(title, sizeof title, "LJ N=%zu: E/N(t) - E/N(0) for each dt and precision", n);
-	lz_data *d = lz_data_open(path, title, 1 + NPREC * NDT, names, units);
+	lz_data *d = lz_lesson_data(L, "ljnve_trace.dat", title, 1 + NPREC * NDT, names, units);
 	if (!d)
 		return LZ_EIO;
 	for (int i = 0; i < NTRACE; i++) {
@@ -246,9 +244,9 @@ static int run_size(size_t n, int full_range, nve_stats st[NPREC][NDT], double *
 	return status;
 }
 
-/* Print one N's table; 1 when the spread scales as dt^2, the drift is small and
- * the potential energy is that of the LJ liquid. */
-static int report(size_t n, nve_stats st[NPREC][NDT], double rate)
+/* Print one N's table and check that the spread scales as dt^2, the drift is small
+ * and the potential energy is that of the LJ liquid. */
+static void report(lz_lesson *L, size_t n, nve_stats st[NPREC][NDT], double rate)
 {
 	double order = spread_order(st[0]);
 	const nve_stats *ref = &st[0][DT_DRIFT];
@@ -270,12 +268,11 @@ static int report(size_t n, nve_stats st[NPREC][NDT], double rate)
 		       st[0][k].drift, fd);
 	}
 	printf("    spread order (3 largest dt, double) %.2f, theory 2  %s\n", order,
-	       ok_order ? "ok" : "CHECK FAILED");
+	       lz_lesson_check(L, ok_order));
 	printf("    drift at dt = %g (double) %.2e eps/tau per particle, limit 1e-4  %s\n",
-	       dts[DT_DRIFT], ref->drift, ok_drift ? "ok" : "CHECK FAILED");
+	       dts[DT_DRIFT], ref->drift, lz_lesson_check(L, ok_drift));
 	printf("    <T> = %.3f, <U>/N = %.3f (reference -4.67 +- 0.05 at T = 1: "
-	       "rc = 2.5, shifted)  %s\n", ref->temp, ref->upot, ok_u ? "ok" : "CHECK FAILED");
-	return ok_order && ok_drift && ok_u;
+	       "rc = 2.5, shifted)  %s\n", ref->temp, ref->upot, lz_lesson_check(L, ok_u));
 }
 
 static void json_size(lz_json *j, size_t n, nve_stats st[NPREC][NDT], double rate)
@@ -291,15 +288,12 @@ static void json_size(lz_json *j, size_t n, nve_stats st[NPREC][NDT], double rat
 	lz_json_num(j, key, rate);
 }
 
-static int write_json(const char *out, const size_t *ns, int nn,
-                      nve_stats st[][NPREC][NDT], const double *rate, int ok)
+static int write_json(lz_lesson *L, const size_t *ns, int nn, nve_stats st[][NPREC][NDT],
+                      const double *rate)
 {
-	char path[4096];
-	snprintf(path, sizeof path, "%s/ljnve.json", out);
-	lz_json *j = lz_json_open(path);
+	lz_json *j = lz_lesson_json(L, "ljnve.json");
 	if (!j)
 		return LZ_EIO;
-	lz_json_str(j, "check", ok ? "passed" : "FAILED");
 	lz_json_num(j, "density", RHO);
 	lz_json_num(j, "run_length_tau", T_RUN);
 	lz_json_num(j, "N108_sigma_E_dt0.000125_double", st[0][0][0].sigma);
@@ -311,17 +305,15 @@ static int write_json(const char *out, const size_t *ns, int nn,
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
 	static const size_t sizes[] = {108, 256, 500, 864};
 	static nve_stats st[4][NPREC][NDT];
 	static double trace[NPREC][NDT][NTRACE];
 	static double t[MAX_SAMPLES], e[MAX_SAMPLES];
 	double rate[4];
-	int nn = argc == 3 ? 1 : 4, ok = 1, status = LZ_OK;
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
+	int nn = L.quick ? 1 : 4, status = LZ_OK;
 	printf("ljnve: Lennard-Jones rho = %g, rc = %g (cut and shifted), T = %g after "
 	       "%d steps of rescaled equilibration at dt = %g; seed %d\n", RHO, RC, TEMP,
 	       EQ_STEPS, DT_EQ, SEED);
@@ -333,19 +325,15 @@ int main(int argc, char **argv)
 	for (int a = 0; a < nn && status == LZ_OK; a++) {
 		status = run_size(sizes[a], a == 0, st[a], t, e, trace, &rate[a]);
 		if (status == LZ_OK)
-			ok = report(sizes[a], st[a], rate[a]) && ok;
+			report(&L, sizes[a], st[a], rate[a]);
 	}
 	if (status == LZ_OK)
-		status = write_table(argv[1], sizes, nn, st);
+		status = write_table(&L, sizes, nn, st);
 	if (status == LZ_OK)
-		status = write_trace(argv[1], sizes[0], trace);
+		status = write_trace(&L, sizes[0], trace);
 	if (status == LZ_OK)
-		status = write_json(argv[1], sizes, nn, st, rate, ok);
-	if (status != LZ_OK) {
-		fprintf(stderr, "ljnve: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: energy spread ~ dt^2, small drift, liquid U/N: %s\n",
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+		status = write_json(&L, sizes, nn, st, rate);
+	if (status != LZ_OK)
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "energy spread ~ dt^2, small drift, liquid U/N");
 }

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "lz/error.h"
+#include "lz/lesson.h"
 #include "lz/lozenge.h"
 #include "lz/output.h"
 
@@ -38,22 +39,22 @@ static const expectation expected[] = {
 };
 
 /* Write the diagram script for the named schemes into OUTDIR/file. */
-static int write_diagram(const char *out, const char *file, const char *png,
+static int write_diagram(lz_lesson *L, const char *file, const char *png,
                          const char *const *names, int n)
 {
 	const lz_scheme *schemes[6];
-	char path[4096];
 	for (int i = 0; i < n; i++)
 		if (!(schemes[i] = lz_scheme_find(names[i])))
 			return lz_error(LZ_EINVAL, "no scheme named '%s'", names[i]);
-	snprintf(path, sizeof path, "%s/%s", out, file);
-	FILE *f = fopen(path, "w");
+	FILE *f = lz_lesson_fopen(L, file);
 	if (!f)
-		return lz_error(LZ_EIO, "cannot write %s", path);
+		return LZ_EIO;
 	int status = lz_lozenge_gnuplot(f, schemes, n, png);
-	if (fclose(f) != 0 && status == LZ_OK)
-		status = lz_error(LZ_EIO, "cannot write %s", path);
-	return status;
+	if (status != LZ_OK) {
+		fclose(f);
+		return status;
+	}
+	return lz_lesson_fclose(L, f, file);
 }
 
 /* 1 when (scheme, formula) has no hand-derived expectation or meets it. */
@@ -70,7 +71,7 @@ static int meets_expectation(const char *scheme, int formula, int order, int der
 }
 
 /* One row per formula of every scheme: print it, check it, store it. */
-static int orders(lz_data *d, lz_json *j, int *ok)
+static int orders(lz_lesson *L, lz_data *d, lz_json *j)
 {
 	int n;
 	const lz_scheme *all = lz_schemes(&n);
@@ -87,51 +88,43 @@ static int orders(lz_data *d, lz_json *j, int *ok)
 			int good = meets_expectation(all[s].name, f, order, deriv, c);
 			snprintf(target, sizeof target, "%c(%+d/2)", col_name[fm->col], fm->half);
 			printf("  %-17s %-8s %5d %6d %10s  %s\n", all[s].name, target, order, deriv,
-			       lz_ratio_str(c, buf, sizeof buf), good ? "ok" : "CHECK FAILED");
+			       lz_ratio_str(c, buf, sizeof buf), lz_lesson_check(L, good));
 			lz_data_row(d, (double[]){s, f, order, deriv, (double)c.num, (double)c.den});
 			snprintf(key, sizeof key, "order_%s_%s", all[s].name, target);
 			lz_json_int(j, key, order);
-			*ok = *ok && good;
 		}
 	return LZ_OK;
 }
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
 	static const char *const verlet[] = {"verlet", "velocity", "leapfrog",
 	                                     "velocity-verlet"};
 	static const char *const euler[] = {"euler", "symplectic-euler"};
 	static const char *names[] = {"scheme", "formula", "order", "deriv", "c_num", "c_den"};
-	char path[4096], jpath[4096];
-	int ok = 1;
 	printf("lozenge: diagrams of verlet, velocity, leapfrog, velocity-verlet, euler, "
 	       "symplectic-euler; truncation orders by exact Taylor expansion "
 	       "(derivatives up to %d)\n", MAX_DERIV);
-	snprintf(path, sizeof path, "%s/lozenge.dat", argv[1]);
-	snprintf(jpath, sizeof jpath, "%s/lozenge.json", argv[1]);
-	lz_data *d = lz_data_open(path, "local truncation error of every formula: "
-	                          "c dt^order x^(deriv)", 6, names, NULL);
-	lz_json *j = d ? lz_json_open(jpath) : NULL;
+	lz_data *d = lz_lesson_data(&L, "lozenge.dat", "local truncation error of every "
+	                            "formula: c dt^order x^(deriv)", 6, names, NULL);
+	/* Opened before the checks, which run as the orders are written: its "check"
+	 * member comes last. */
+	const char *jpath = d ? lz_lesson_path(&L, "lozenge.json") : NULL;
+	lz_json *j = jpath ? lz_json_open(jpath) : NULL;
 	int status = d && j ? LZ_OK : LZ_EIO;
 	if (status == LZ_OK)
-		status = write_diagram(argv[1], "diagram_verlet.gp", "lozenge.png", verlet, 4);
+		status = write_diagram(&L, "diagram_verlet.gp", "lozenge.png", verlet, 4);
 	if (status == LZ_OK)
-		status = write_diagram(argv[1], "diagram_euler.gp", "lozenge_euler.png", euler, 2);
+		status = write_diagram(&L, "diagram_euler.gp", "lozenge_euler.png", euler, 2);
 	if (status == LZ_OK)
-		status = orders(d, j, &ok);
+		status = orders(&L, d, j);
 	if (j)
-		lz_json_str(j, "check", ok ? "passed" : "FAILED");
+		lz_json_str(j, "check", lz_lesson_verdict(&L));
 	if ((d && lz_data_close(d) != LZ_OK) || (j && lz_json_end(j) != LZ_OK) ||
-	    status != LZ_OK) {
-		fprintf(stderr, "lozenge: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: Verlet order 4 (-1/12), velocity order 2 (1/6): %s\n",
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+	    status != LZ_OK)
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "Verlet order 4 (-1/12), velocity order 2 (1/6)");
 }

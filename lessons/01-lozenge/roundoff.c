@@ -24,6 +24,7 @@
 #include "lz/error.h"
 #include "lz/fpsum.h"
 #include "lz/integrate.h"
+#include "lz/lesson.h"
 #include "lz/output.h"
 
 #define T_END 1.0
@@ -110,15 +111,13 @@ static double overtake_dt(const table *t, int k)
 	return i < t->npoints ? t->dt[i] : NAN;
 }
 
-static int write_data(const char *out, const table *t)
+static int write_data(lz_lesson *L, const table *t)
 {
 	static const char *names[] = {"dt", "err_verlet", "err_leapfrog", "err_velocity_verlet",
 	                              "err_compensated"};
 	static const char *units[] = {"tau", "sigma", "sigma", "sigma", "sigma"};
-	char path[4096];
-	snprintf(path, sizeof path, "%s/roundoff.dat", out);
-	lz_data *d = lz_data_open(path, "oscillator centred at X0=1000, x0=X0+1, v0=0, T=1: |x(T)-X0-cos T| vs dt",
-	                          5, names, units);
+	lz_data *d = lz_lesson_data(L, "roundoff.dat", "oscillator centred at X0=1000, "
+	                            "x0=X0+1, v0=0, T=1: |x(T)-X0-cos T| vs dt", 5, names, units);
 	if (!d)
 		return LZ_EIO;
 	for (int i = 0; i < t->npoints; i++) {
@@ -129,14 +128,12 @@ static int write_data(const char *out, const table *t)
 	return lz_data_close(d);
 }
 
-static int write_json(const char *out, const table *t, int ok)
+static int write_json(lz_lesson *L, const table *t)
 {
-	char path[4096], key[64];
-	snprintf(path, sizeof path, "%s/roundoff.json", out);
-	lz_json *j = lz_json_open(path);
+	char key[64];
+	lz_json *j = lz_lesson_json(L, "roundoff.json");
 	if (!j)
 		return LZ_EIO;
-	lz_json_str(j, "check", ok ? "passed" : "FAILED");
 	for (int k = 0; k < NVARIANTS - 1; k++) {
 		snprintf(key, sizeof key, "roundoff_wins_below_dt_%s", variant_name[k]);
 		lz_json_num(j, key, overtake_dt(t, k));
@@ -151,9 +148,9 @@ static int write_json(const char *out, const table *t, int ok)
 
 /* At the smallest step every naive variant must be far worse than the compensated
  * one, which must still be falling and near machine precision. */
-static int check(const table *t)
+static void check(lz_lesson *L, const table *t)
 {
-	int last = t->npoints - 1, ok = 1;
+	int last = t->npoints - 1;
 	double comp = t->err[last][NVARIANTS - 1];
 	printf("  %-16s %22s %14s\n", "variant", "round-off wins below", "error@min dt");
 	for (int k = 0; k < NVARIANTS; k++) {
@@ -163,19 +160,15 @@ static int check(const table *t)
 		if (!isnan(overtake_dt(t, k)))
 			snprintf(below, sizeof below, "dt = %.2e", overtake_dt(t, k));
 		printf("  %-16s %22s %14.2e  %s\n", variant_name[k], below, t->err[last][k],
-		       good ? "ok" : "CHECK FAILED");
-		ok = ok && good;
+		       lz_lesson_check(L, good));
 	}
-	return ok;
 }
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
 	int kmax = MAX_POINTS - 1;
 	table t = {0};
 	printf("roundoff: oscillator (omega = 1) centred at X0 = %g, x0 = X0 + 1, v0 = 0; "
@@ -186,18 +179,12 @@ int main(int argc, char **argv)
 		long n = lround(pow(10.0, 1.0 + k / 4.0));
 		t.dt[t.npoints] = T_END / (double)n;
 		for (int v = 0; v < NVARIANTS; v++)
-			if (run_variant(v, n, &t.err[t.npoints][v]) != LZ_OK) {
-				fprintf(stderr, "roundoff: %s\n", lz_error_message());
-				return 2;
-			}
+			if (run_variant(v, n, &t.err[t.npoints][v]) != LZ_OK)
+				return lz_lesson_error(&L);
 		t.npoints++;
 	}
-	int ok = check(&t);
-	if (write_data(argv[1], &t) != LZ_OK || write_json(argv[1], &t, ok) != LZ_OK) {
-		fprintf(stderr, "roundoff: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: round-off overtakes truncation unless compensated: %s\n",
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+	check(&L, &t);
+	if (write_data(&L, &t) != LZ_OK || write_json(&L, &t) != LZ_OK)
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "round-off overtakes truncation unless compensated");
 }

@@ -17,12 +17,12 @@
  */
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
 #include <gsl/gsl_fit.h>
 
 #include "lz/error.h"
 #include "lz/integrate.h"
+#include "lz/lesson.h"
 #include "lz/output.h"
 #include "lz/potential.h"
 
@@ -75,17 +75,16 @@ static int probe(lz_integrator m, double w, long nsteps, double *xmax, double *r
 	return status;
 }
 
-static int write_trajectories(const char *out, const double *w)
+static int write_trajectories(lz_lesson *L, const double *w)
 {
 	static const char *names[] = {"n", "t_low", "x_low", "t_high", "x_high", "growth_high"};
 	static const char *units[] = {"steps", "tau", "sigma", "tau", "sigma", "sigma"};
-	char path[4096];
 	lz_harmonic p[2];
 	lz_md *s[2] = {oscillator(&p[0], LZ_VELOCITY_VERLET, w[0]),
 	               oscillator(&p[1], LZ_VELOCITY_VERLET, w[1])};
-	snprintf(path, sizeof path, "%s/stability.dat", out);
-	lz_data *d = s[0] && s[1] ? lz_data_open(path, "velocity Verlet at omega*dt = "
-	             "1.99 (low) and 2.01 (high); growth_high = |lambda|^n", 6, names, units) : NULL;
+	lz_data *d = s[0] && s[1] ? lz_lesson_data(L, "stability.dat", "velocity Verlet at "
+	             "omega*dt = 1.99 (low) and 2.01 (high); growth_high = |lambda|^n", 6,
+	             names, units) : NULL;
 	int status = d ? LZ_OK : LZ_EIO;
 	for (int i = 0; i <= TRAJ_STEPS && status == LZ_OK; i++) {
 		double row[6] = {i, s[0]->t, s[0]->r[0], s[1]->t, s[1]->r[0],
@@ -117,13 +116,12 @@ typedef struct {
 
 /* Energies of Euler, symplectic Euler and velocity Verlet side by side; the
  * conservation figures come from LONG_STEPS steps, the file from the first few. */
-static int write_shadow(const char *out, shadow_result *res)
+static int write_shadow(lz_lesson *L, shadow_result *res)
 {
 	static const char *names[] = {"t", "E_euler", "E_sympl", "H_sympl", "E_vv", "H_vv"};
 	static const char *units[] = {"tau", "rel", "rel", "rel", "rel", "rel"};
 	static const lz_integrator ms[3] = {LZ_EULER, LZ_SYMPLECTIC_EULER, LZ_VELOCITY_VERLET};
 	const double dt = OMEGA_DT_SHADOW;
-	char path[4096];
 	lz_harmonic p[3];
 	lz_md *s[3];
 	double e0[3], h0[3], when;
@@ -134,9 +132,9 @@ static int write_shadow(const char *out, shadow_result *res)
 		e0[k] = lz_md_energy(s[k], ms[k], &when);
 		h0[k] = shadow_of(s[k], ms[k], dt);
 	}
-	snprintf(path, sizeof path, "%s/shadow.dat", out);
-	lz_data *d = lz_data_open(path, "omega*dt = 0.5: energy E and shadow energy H, "
-	                          "each relative to its start value, minus 1", 6, names, units);
+	lz_data *d = lz_lesson_data(L, "shadow.dat", "omega*dt = 0.5: energy E and shadow "
+	                            "energy H, each relative to its start value, minus 1", 6,
+	                            names, units);
 	int status = d ? LZ_OK : LZ_EIO;
 	*res = (shadow_result){{0, 0}, 0};
 	for (long i = 0; i <= LONG_STEPS && status == LZ_OK; i++) {
@@ -165,45 +163,36 @@ static int write_shadow(const char *out, shadow_result *res)
 }
 
 /* Stable at w[0] and unstable at w[1], with the predicted growth, for the three
- * members of the Verlet family. Prints a line each; returns 1 when all agree. */
-static int check_family(const double *w, double *rate_measured)
+ * members of the Verlet family: a checked line each. */
+static int check_family(lz_lesson *L, const double *w, double *rate_measured)
 {
 	static const lz_integrator fam[3] = {LZ_VERLET, LZ_VELOCITY_VERLET, LZ_LEAPFROG};
 	double expect = log(growth_factor(w[1])), xmax, rate;
-	int ok = 1;
 	for (int k = 0; k < 3; k++) {
-		if (probe(fam[k], w[0], LONG_STEPS, &xmax, &rate) != LZ_OK) {
-			fprintf(stderr, "stability: %s\n", lz_error_message());
-			return 0;
-		}
+		int status = probe(fam[k], w[0], LONG_STEPS, &xmax, &rate);
+		if (status != LZ_OK)
+			return status;
 		int stable = xmax < 1.0 + 1e-9;
+		lz_lesson_check(L, stable);
 		printf("  %-16s Omega = %.2f: max|x| over %d steps = %.12f  %s\n",
 		       lz_integrator_name(fam[k]), w[0], LONG_STEPS, xmax,
 		       stable ? "bounded (ok)" : "CHECK FAILED: should stay <= 1");
-		if (probe(fam[k], w[1], TRAJ_STEPS, &xmax, &rate) != LZ_OK) {
-			fprintf(stderr, "stability: %s\n", lz_error_message());
-			return 0;
-		}
+		if ((status = probe(fam[k], w[1], TRAJ_STEPS, &xmax, &rate)) != LZ_OK)
+			return status;
 		int grows = fabs(rate - expect) < 1e-3 * expect;
 		printf("  %-16s Omega = %.2f: ln|x| grows by %.5f per step (theory %.5f)  %s\n",
-		       lz_integrator_name(fam[k]), w[1], rate, expect,
-		       grows ? "ok" : "CHECK FAILED");
+		       lz_integrator_name(fam[k]), w[1], rate, expect, lz_lesson_check(L, grows));
 		if (fam[k] == LZ_VELOCITY_VERLET)
 			*rate_measured = rate;
-		ok = ok && stable && grows;
 	}
-	return ok;
+	return LZ_OK;
 }
 
-static int write_json(const char *out, const double *w, double rate,
-                      const shadow_result *r, int ok)
+static int write_json(lz_lesson *L, const double *w, double rate, const shadow_result *r)
 {
-	char path[4096];
-	snprintf(path, sizeof path, "%s/stability.json", out);
-	lz_json *j = lz_json_open(path);
+	lz_json *j = lz_lesson_json(L, "stability.json");
 	if (!j)
 		return LZ_EIO;
-	lz_json_str(j, "check", ok ? "passed" : "FAILED");
 	lz_json_num(j, "growth_per_step_at_2.01", exp(rate));
 	lz_json_num(j, "growth_per_step_theory", growth_factor(w[1]));
 	lz_json_num(j, "shadow_rel_change_velocity_verlet", r->shadow_drift[0]);
@@ -214,35 +203,26 @@ static int write_json(const char *out, const double *w, double rate,
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
 	const double w[2] = {1.99, 2.01};
 	double rate = 0.0;
 	shadow_result sr;
 	printf("stability: unit oscillator (omega = 1), x0 = 1, v0 = 0, Omega = omega*dt\n");
 	printf("  part 1: Omega = %.2f and %.2f, %d steps plotted; part 2: Omega = %.1f\n",
 	       w[0], w[1], TRAJ_STEPS, OMEGA_DT_SHADOW);
-	int ok = check_family(w, &rate);
-	if (write_trajectories(argv[1], w) != LZ_OK || write_shadow(argv[1], &sr) != LZ_OK) {
-		fprintf(stderr, "stability: %s\n", lz_error_message());
-		return 2;
-	}
+	if (check_family(&L, w, &rate) != LZ_OK || write_trajectories(&L, w) != LZ_OK ||
+	    write_shadow(&L, &sr) != LZ_OK)
+		return lz_lesson_error(&L);
 	int shadow_ok = sr.shadow_drift[0] < 1e-12 && sr.shadow_drift[1] < 1e-12;
 	int euler_ok = sr.euler_growth < 1e-12;
 	printf("  shadow energy over %d steps at Omega = %.1f: velocity Verlet %.2e, "
 	       "symplectic Euler %.2e (limit 1e-12)  %s\n", LONG_STEPS, OMEGA_DT_SHADOW,
-	       sr.shadow_drift[0], sr.shadow_drift[1], shadow_ok ? "ok" : "CHECK FAILED");
+	       sr.shadow_drift[0], sr.shadow_drift[1], lz_lesson_check(&L, shadow_ok));
 	printf("  Euler: E_n/E_0 = (1 + Omega^2)^n to %.1e relative (limit 1e-12)  %s\n",
-	       sr.euler_growth, euler_ok ? "ok" : "CHECK FAILED");
-	ok = ok && shadow_ok && euler_ok;
-	if (write_json(argv[1], w, rate, &sr, ok) != LZ_OK) {
-		fprintf(stderr, "stability: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: stability limit, shadow energies, Euler growth: %s\n",
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+	       sr.euler_growth, lz_lesson_check(&L, euler_ok));
+	if (write_json(&L, w, rate, &sr) != LZ_OK)
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "stability limit, shadow energies, Euler growth");
 }

@@ -19,6 +19,7 @@
 
 #include "lz/error.h"
 #include "lz/fpsum.h"
+#include "lz/lesson.h"
 #include "lz/output.h"
 #include "lz/timer.h"
 
@@ -106,14 +107,12 @@ static int terms_init(terms *t, size_t nmax)
 
 /* Relative errors of the four sums at n = 10^(1 + k/4) into summation.dat; the
  * errors at nmax into last[]. */
-static int write_errors(const char *out, const terms *t, double *last)
+static int write_errors(lz_lesson *L, const terms *t, double *last)
 {
 	static const char *names[] = {"n", "largest_first", "smallest_first", "pairwise", "kahan"};
 	static const char *units[] = {"terms", "rel", "rel", "rel", "rel"};
-	char path[4096];
-	snprintf(path, sizeof path, "%s/summation.dat", out);
-	lz_data *d = lz_data_open(path, "sum of 1/k^2, k = 1..n: relative error against a "
-	                          "long-double reference", 5, names, units);
+	lz_data *d = lz_lesson_data(L, "summation.dat", "sum of 1/k^2, k = 1..n: relative "
+	                            "error against a long-double reference", 5, names, units);
 	if (!d)
 		return LZ_EIO;
 	for (int k = 0;; k++) {
@@ -130,15 +129,13 @@ static int write_errors(const char *out, const terms *t, double *last)
 	return lz_data_close(d);
 }
 
-static int write_json(const char *out, const double *last, const double *ns, double adv,
-                      double naive_adv, int ok)
+static int write_json(lz_lesson *L, const double *last, const double *ns, double adv,
+                      double naive_adv)
 {
-	char path[4096], key[64];
-	snprintf(path, sizeof path, "%s/summation.json", out);
-	lz_json *j = lz_json_open(path);
+	char key[64];
+	lz_json *j = lz_lesson_json(L, "summation.json");
 	if (!j)
 		return LZ_EIO;
-	lz_json_str(j, "check", ok ? "passed" : "FAILED");
 	for (int m = 0; m < NMETHODS; m++) {
 		snprintf(key, sizeof key, "rel_error_%s", method_name[m]);
 		lz_json_num(j, key, last[m]);
@@ -154,37 +151,29 @@ static int write_json(const char *out, const double *last, const double *ns, dou
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
 	terms t = {0};
 	double last[NMETHODS], ns[NMETHODS], naive_adv;
-	size_t nmax = argc == 3 ? 1000000 : 10000000;
+	size_t nmax = L.quick ? 1000000 : 10000000;
 	printf("summation: sum of 1/k^2 for n = 10 ... %zu; reference in long double "
 	       "(%d-bit mantissa)\n", nmax, LDBL_MANT_DIG);
 	double adv = surprises(&naive_adv);
-	if (terms_init(&t, nmax) != LZ_OK || write_errors(argv[1], &t, last) != LZ_OK) {
-		fprintf(stderr, "summation: %s\n", lz_error_message());
-		return 2;
-	}
-	int ok = adv == 2.0;
+	if (terms_init(&t, nmax) != LZ_OK || write_errors(&L, &t, last) != LZ_OK)
+		return lz_lesson_error(&L);
+	lz_lesson_check(&L, adv == 2.0);  /* its line is printed by surprises() */
 	printf("  %-15s %12s %12s\n", "method", "rel error", "ns/term");
 	for (int m = 0; m < NMETHODS; m++) {
 		ns[m] = ns_per_term(&t, m);
 		int good = m == 0 ? last[0] > 10.0 * last[1] : last[m] < 1e-15;
 		printf("  %-15s %12.2e %12.2f  %s\n", method_name[m], last[m], ns[m],
-		       good ? "ok" : "CHECK FAILED");
-		ok = ok && good;
+		       lz_lesson_check(&L, good));
 	}
 	free(t.fwd);
 	free(t.rev);
-	if (write_json(argv[1], last, ns, adv, naive_adv, ok) != LZ_OK) {
-		fprintf(stderr, "summation: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: compensated 1+1e100+1-1e100 = 2, pairwise and Kahan near epsilon: %s\n",
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+	if (write_json(&L, last, ns, adv, naive_adv) != LZ_OK)
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "compensated 1+1e100+1-1e100 = 2, pairwise and Kahan "
+	                        "near epsilon");
 }

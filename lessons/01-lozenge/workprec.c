@@ -24,6 +24,7 @@
 
 #include "lz/error.h"
 #include "lz/integrate.h"
+#include "lz/lesson.h"
 #include "lz/output.h"
 #include "lz/potential.h"
 #include "lz/rng.h"
@@ -221,14 +222,14 @@ static double cost_at_target(const curve *c, const double *cost, int *extrapolat
 	return pow(10.0, (log10(TARGET) - c0) / c1) / c->evals[last] * cost[last];
 }
 
-static int write_curve(const char *out, const char *name, const curve *c, int is_rk)
+static int write_curve(lz_lesson *L, const char *name, const curve *c, int is_rk)
 {
 	const char *names[] = {is_rk ? "tol" : "dt", "force_evals", "cpu", "error"};
 	const char *units[] = {is_rk ? "" : "tau", "", "s", "rel"};
-	char path[4096], title[128];
-	snprintf(path, sizeof path, "%s/workprec_%s.dat", out, name);
+	char file[64], title[128];
+	snprintf(file, sizeof file, "workprec_%s.dat", name);
 	snprintf(title, sizeof title, "%s: rms position error at T=%g vs cost", name, T_END);
-	lz_data *d = lz_data_open(path, title, 4, names, units);
+	lz_data *d = lz_lesson_data(L, file, title, 4, names, units);
 	if (!d)
 		return LZ_EIO;
 	for (int i = 0; i < c->npoints; i++)
@@ -241,14 +242,12 @@ static const char *method_name(int m)
 	return m < LZ_NINTEGRATORS ? lz_integrator_name(m) : "rk8pd";
 }
 
-static int write_json(const char *out, const curve *c, size_t n, int ok)
+static int write_json(lz_lesson *L, const curve *c, size_t n)
 {
-	char path[4096], key[96];
-	snprintf(path, sizeof path, "%s/workprec.json", out);
-	lz_json *j = lz_json_open(path);
+	char key[96];
+	lz_json *j = lz_lesson_json(L, "workprec.json");
 	if (!j)
 		return LZ_EIO;
-	lz_json_str(j, "check", ok ? "passed" : "FAILED");
 	lz_json_int(j, "oscillators", (long long)n);
 	lz_json_num(j, "target_error", TARGET);
 	for (int m = 0; m < NMETHODS; m++) {
@@ -264,11 +263,10 @@ static int write_json(const char *out, const curve *c, size_t n, int ok)
 	return lz_json_end(j);
 }
 
-/* Report the orders seen on the cost axis and the reference's reach; 1 if sane. */
-static int check(const curve *c)
+/* Report and check the orders seen on the cost axis and the reference's reach. */
+static void check(lz_lesson *L, const curve *c)
 {
 	static const double order[LZ_NINTEGRATORS] = {1, 1, 2, 2, 2};
-	int ok = 1;
 	printf("  %-17s %10s %8s %14s %12s\n", "method", "slope", "theory",
 	       "evals@1e-6", "cpu_s@1e-6");
 	for (int m = 0; m < NMETHODS; m++) {
@@ -280,30 +278,25 @@ static int check(const curve *c)
 		printf("  %-17s %10.3f %8s %14.4g %12.3g%s  %s\n", method_name(m), slope,
 		       m < LZ_NINTEGRATORS ? (order[m] == 1 ? "-1" : "-2") : "-", evals,
 		       cost_at_target(&c[m], c[m].cpu, &ex), ex ? " (extrapolated)" : "",
-		       good ? "ok" : "CHECK FAILED");
-		ok = ok && good;
+		       lz_lesson_check(L, good));
 	}
 	const curve *rk = &c[LZ_NINTEGRATORS];
 	int rk_ok = rk->err[rk->npoints - 1] < 1e-9;
 	printf("  rk8pd at tol %.0e: error %.2e (must be < 1e-9)  %s\n",
-	       rk->param[rk->npoints - 1], rk->err[rk->npoints - 1],
-	       rk_ok ? "ok" : "CHECK FAILED");
-	return ok && rk_ok;
+	       rk->param[rk->npoints - 1], rk->err[rk->npoints - 1], lz_lesson_check(L, rk_ok));
 }
 
 int main(int argc, char **argv)
 {
-	if (argc < 2 || argc > 3 || (argc == 3 && strcmp(argv[2], "--quick") != 0)) {
-		fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+	lz_lesson L;
+	if (lz_lesson_args(argc, argv, "01", &L) != LZ_OK)
 		return 2;
-	}
-	int quick = argc == 3, kmax = quick ? 12 : 16;
+	int kmax = L.quick ? 12 : 16;
 	problem p;
 	curve c[NMETHODS];
 	gsl_set_error_handler_off();  /* rk8pd failures come back as a status */
-	lz_set_error_handler(lz_error_quiet);  /* errors are reported once, by main */
-	if (problem_init(&p, quick ? 200 : 1000) != LZ_OK)
-		return 2;
+	if (problem_init(&p, L.quick ? 200 : 1000) != LZ_OK)
+		return lz_lesson_error(&L);
 	printf("workprec: %zu 3D oscillators (omega = 1, random start, seed %d) to T = %g\n",
 	       p.n, SEED, T_END);
 	printf("  integrators at n = 10 ... %ld steps; rk8pd at tol 1e-1 ... 1e-%d; "
@@ -315,17 +308,14 @@ int main(int argc, char **argv)
 	if (status == LZ_OK)
 		status = run_rk8pd(&p, &c[LZ_NINTEGRATORS]);
 	for (int m = 0; m < NMETHODS && status == LZ_OK; m++)
-		status = write_curve(argv[1], method_name(m), &c[m], m == LZ_NINTEGRATORS);
-	int ok = status == LZ_OK && check(c);
-	if (status == LZ_OK)
-		status = write_json(argv[1], c, p.n, ok);
+		status = write_curve(&L, method_name(m), &c[m], m == LZ_NINTEGRATORS);
+	if (status == LZ_OK) {
+		check(&L, c);
+		status = write_json(&L, c, p.n);
+	}
 	free(p.r0);
 	free(p.v0);
-	if (status != LZ_OK) {
-		fprintf(stderr, "workprec: %s\n", lz_error_message());
-		return 2;
-	}
-	printf("check: work-precision orders and reference: %s\n",
-	       ok ? "passed" : "FAILED (run `make test STAGE=01`)");
-	return ok ? 0 : 1;
+	if (status != LZ_OK)
+		return lz_lesson_error(&L);
+	return lz_lesson_finish(&L, "work-precision orders and reference");
 }

@@ -9,12 +9,8 @@
 # wall_s and the keys the scene names in its '# demo: k1 k2' line. The page is one
 # self-contained file plus img/ (inline CSS, images referenced relatively).
 # Anything missing becomes a note on the page, never a failure.
-set -euo pipefail
-
-if [ $# != 2 ]; then
-	echo "usage: demo.sh BUILD \"STAGES\"   e.g. demo.sh build \"01-lozenge\"" >&2
-	exit 2
-fi
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+need_args $# 2 2 'demo.sh BUILD "STAGES"   e.g. demo.sh build "01-lozenge"'
 build=$1
 stages=$2
 demo=$build/demo

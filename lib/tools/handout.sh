@@ -11,12 +11,10 @@
 # Then it checks the tarball: none of those paths inside, no solution marker in any
 # file, and unpacked into a temporary directory it builds (`make all`) and
 # `make grade` there scores 0.
-set -euo pipefail
-export LC_ALL=C
-
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=lib/tools/common.sh
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$ROOT"
-[ $# -eq 1 ] || { echo "usage: handout.sh BUILD" >&2; exit 2; }
+need_args $# 1 1 "handout.sh BUILD"
 BUILD=$1
 OUT=$BUILD/handout/lozenge-student.tar.gz
 NAME=lozenge-student
@@ -43,8 +41,7 @@ if ! git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
 	exit 1
 fi
 
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+make_tmp
 stage=$tmp/pack/$NAME
 mkdir -p "$stage"
 
@@ -113,7 +110,7 @@ else
 fi
 t0=$SECONDS
 student_make grade >"$tmp/grade.log" 2>&1 || true
-score=$(sed -n 's/^Score: \([0-9.]*\/[0-9.]*\)$/\1/p' "$tmp/grade.log" | tail -n 1)
+score=$(score_of "$tmp/grade.log")
 case $score in
 0/0 | '') fail "make grade in the handout gave no score:"; tail -n 30 "$tmp/grade.log" ;;
 0/*) echo "  ok  make grade scores the stubs $score ($((SECONDS - t0)) s)" ;;

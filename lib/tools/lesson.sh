@@ -8,12 +8,8 @@
 #   3. every scene datasets/scenes/NN-*.scene, as lz run SCENE --out OUTDIR/runs/NAME.
 # OUTDIR is BUILD/lessons/NN. QUICK=1 runs the demo size. Exit status 1 when any
 # step failed (the table at the end says which).
-set -euo pipefail
-
-if [ $# -lt 2 ] || [ $# -gt 3 ]; then
-	echo "usage: lesson.sh STAGE_NAME BUILD [QUICK]   e.g. lesson.sh 01-lozenge build 1" >&2
-	exit 2
-fi
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+need_args $# 2 3 'lesson.sh STAGE_NAME BUILD [QUICK]   e.g. lesson.sh 01-lozenge build 1'
 stage=$1
 build=$2
 quick=${3:-}

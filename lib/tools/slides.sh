@@ -5,12 +5,8 @@
 # the lesson runs first at demo size (lesson.sh STAGE BUILD 1); then pandoc turns the
 # Markdown into one self-contained dzslides HTML file, the plots embedded (they are
 # found by bare name: --resource-path=BUILD/lessons/NN:slides).
-set -euo pipefail
-
-if [ $# != 2 ]; then
-	echo "usage: slides.sh BUILD \"STAGES\"   e.g. slides.sh build \"01-lozenge\"" >&2
-	exit 2
-fi
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+need_args $# 2 2 'slides.sh BUILD "STAGES"   e.g. slides.sh build "01-lozenge"'
 build=$1
 stages=$2
 if ! command -v pandoc >/dev/null 2>&1; then

@@ -11,12 +11,10 @@
 # IMPL=solutions, every test must pass and the grade must be 100%.
 # Prints `audit: N passed, M failed` (one count per test and per stage-wide check)
 # and exits non-zero on any failure.
-set -euo pipefail
-export LC_ALL=C
-
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=lib/tools/common.sh
+. "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"
 cd "$ROOT"
-[ $# -ge 1 ] || { echo "usage: audit.sh BUILD [\"STAGES\"]" >&2; exit 2; }
+need_args $# 1 2 "audit.sh BUILD [\"STAGES\"]"
 BUILD=$1
 AUDIT=$BUILD/audit
 STAGES=${2:-$(for d in assignments/[0-9][0-9]-*/; do [ -d "$d" ] && basename "$d"; done | tr "\n" " ")}
@@ -24,8 +22,7 @@ REPORT=$AUDIT/bin/lz-report
 MULT=${CK_TIMEOUT_MULTIPLIER:-1}
 passed=0
 failed=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+make_tmp
 
 ok() { passed=$((passed + 1)); }
 defect() {
@@ -35,26 +32,20 @@ defect() {
 
 rubric_args() {  # rubric_args STAGE: the Makefile's rubric files, as --rubric options
 	local r
-	for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-		[ -f "$r" ] && printf -- '--rubric\n%s\n' "$r"
+	for r in $(rubrics_of "$1"); do
+		printf -- '--rubric\n%s\n' "$r"
 	done
-	return 0
 }
 
 rubric_tests() {  # rubric_tests STAGE: the test names its rubrics list
 	local r
-	for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-		[ -f "$r" ] && awk '{ sub(/#.*/, "") } NF { print $1 }' "$r"
+	for r in $(rubrics_of "$1"); do
+		awk '{ sub(/#.*/, "") } NF { print $1 }' "$r"
 	done
-	return 0
 }
 
 budget_of() {  # budget_of STAGE: seconds, the rubric timeouts summed plus slack
-	local sum
-	sum=$(for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-		[ -f "$r" ] && cat "$r"
-	done | awk '{ sub(/#.*/, "") } NF >= 4 { s += $4 } END { printf "%d", s + 0.999 }')
-	awk -v s="$sum" -v m="$MULT" 'BEGIN { printf "%d", s * m + 30 }'
+	awk -v s="$(rubric_seconds "$1")" -v m="$MULT" 'BEGIN { printf "%d", s * m + 30 }'
 }
 
 # Build every stage's tests and the report writer with one implementation for all.
@@ -102,15 +93,13 @@ run() {  # run STAGE IMPL
 grade() {  # grade STAGE
 	{
 		echo "stage $1"
-		for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-			[ -f "$r" ] && echo "rubric $r"
-		done
+		rubrics_of "$1" | sed 's/^/rubric /'
 		echo "build ok"
 		echo "results $tmp/out"
 		echo "exit 0"
 	} >"$tmp/spec"
 	"$REPORT" --quiet --out "$tmp/report" --spec "$tmp/spec"
-	sed -n 's/^Score: \([0-9.]*\)\/\([0-9.]*\)$/\1 \2/p' "$tmp/report/report.txt"
+	score_of "$tmp/report/report.txt" | tr / ' '
 }
 
 audit_stubs() {  # audit_stubs STAGE

@@ -3,40 +3,53 @@
 #
 #   fixtures.sh BUILD [CASE ...]     (no CASE: all of them)
 #
-# Every tests/grade/fixtures/NAME/ is a fake student submission for stage 01 with an
-# EXPECT file:
+# Every tests/grade/fixtures/NAME/ is a fake student submission for stage 01, kept as
+# a recipe (RECIPE, below) applied to the committed stubs, with an EXPECT file:
 #
 #   score MIN MAX     the total the grader must give (inclusive)
 #   report TEXT       report.txt must contain TEXT (repeatable)
 #   seconds S         grading it must take at most S seconds
 #
-# Each is graded by grade.sh into BUILD/grade-fixtures/NAME/, and then: the score is
-# in range; report.txt, results.json, junit.xml and results.tap were written and are
-# well-formed; nothing a fixture forged (files holding FORGED-BY-FIXTURE) survived;
-# the scratch tree is gone; the whole test program never hit the grader's global
-# timeout. Two more cases come from the tree itself: the stubs (no submission) must
-# score 0 and the reference solutions full marks. Last, `--all` over a directory
-# with the `half` fixture as a .tar.gz and a .tar.gz holding a symbolic link must
-# write a gradebook with both rows, the same score for `half`, and 0 for the other.
+# Each is built into BUILD/grade-fixtures/submissions/NAME/, graded by grade.sh into
+# BUILD/grade-fixtures/NAME/, and then: the score is in range; report.txt,
+# results.json, junit.xml and results.tap were written and are well-formed; nothing a
+# fixture forged (files holding FORGED-BY-FIXTURE) survived; the scratch tree is gone;
+# the whole test program never hit the grader's global timeout. Two more cases come
+# from the tree itself: the stubs (no submission) must score 0 and the reference
+# solutions full marks. Last, `--all` over a directory with the `half` fixture as a
+# .tar.gz and a .tar.gz holding a symbolic link must write a gradebook with both rows,
+# the same score for `half`, and 0 for the other.
 # Prints `fixtures: N passed, M failed` and exits non-zero on any failure.
-set -euo pipefail
-export LC_ALL=C
-
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+#
+# A RECIPE starts from a copy of assignments/01-lozenge/ (the stubs; `make check` has
+# already verified they are current) and applies one operation a line, in order.
+# FILE is a path from the tree root, SNIPPET a file in the fixture's directory:
+#
+#   use OTHER                       apply tests/grade/fixtures/OTHER/RECIPE first
+#   include FILE <HEADER>           put `#include <HEADER>` on FILE's first line
+#   prepend FILE SNIPPET            put SNIPPET (top-level code) at the top of FILE
+#   replace FILE FUNCTION SNIPPET   the `LZ_TODO();` line of FUNCTION's body becomes
+#                                   SNIPPET, indented as that line was
+#
+# A FUNCTION that FILE does not define, or whose body has no `LZ_TODO();` line, fails
+# the fixture: a renamed function breaks it loudly instead of grading plain stubs.
+# shellcheck source=lib/tools/common.sh
+. "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"
 cd "$ROOT"
-[ $# -ge 1 ] || { echo "usage: fixtures.sh BUILD [CASE ...]" >&2; exit 2; }
+need_args $# 1 any "fixtures.sh BUILD [CASE ...]"
 BUILD=$1
 shift
 ONLY=" $* "
 OUTS=$BUILD/grade-fixtures
+SUBS=$OUTS/submissions
 STAGE=01
+STAGE_DIR=assignments/01-lozenge
 FIXTURES=tests/grade/fixtures
 passed=0
 failed=0
 declare -A SCORE  # fixture name -> the score it got
 
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+make_tmp
 
 # ---- checks on one graded output directory ----------------------------------------
 
@@ -87,11 +100,92 @@ check_json() {  # check_json FILE: well-formed, and its score matches report.txt
 		problem "results.json says score $score, report.txt says $(got_of "$(dirname "$json")")"
 }
 
-got_of() { sed -n 's/^Score: \([0-9.]*\)\/.*/\1/p' "$1/report.txt" 2>/dev/null; }
-max_of() { sed -n 's/^Score: [0-9.]*\/\([0-9.]*\)$/\1/p' "$1/report.txt" 2>/dev/null; }
+got_of() { local s; s=$(score_of "$1/report.txt"); echo "${s%/*}"; }  # got_of OUT
+max_of() { local s; s=$(score_of "$1/report.txt"); echo "${s#*/}"; }  # max_of OUT
 
 in_range() {  # in_range X MIN MAX
 	awk -v x="$1" -v lo="$2" -v hi="$3" 'BEGIN { exit !(x != "" && x >= lo && x <= hi) }'
+}
+
+# ---- building a fixture's submission (the RECIPE format is at the top) --------------
+
+# Build fixture NAME's submission into DEST (DEST/assignments/01-lozenge/*.c); on a
+# bad recipe, record the problem and return 1.
+build_fixture() {  # build_fixture NAME DEST
+	local dest=$2
+	rm -rf "$dest"
+	mkdir -p "$dest/$(dirname "$STAGE_DIR")"
+	cp -R "$STAGE_DIR" "$dest/$STAGE_DIR"
+	apply_recipe "$1" "$dest" ""
+}
+
+apply_recipe() {  # apply_recipe NAME DEST USED (USED: the recipes above this one)
+	local dest=$2 used="$3 $1 " dir=$FIXTURES/$1 line op file arg snip extra n=0 at
+	[ -f "$dir/RECIPE" ] || { problem "$dir/RECIPE is missing"; return 1; }
+	while IFS= read -r line; do
+		read -r op file arg snip extra <<<"$line"
+		n=$((n + 1))
+		at="$dir/RECIPE:$n"
+		case $op in '' | '#'*) continue ;; esac
+		if [ "$op" = use ]; then
+			if [ -z "$file" ] || [ -n "$arg" ]; then
+				problem "$at: use OTHER"
+				return 1
+			fi
+			[[ $used != *" $file "* ]] || { problem "$at: $file uses itself"; return 1; }
+			apply_recipe "$file" "$dest" "$used" || return 1
+			continue
+		fi
+		case $file in
+		"$STAGE_DIR"/*.c) [ -f "$dest/$file" ] || { problem "$at: no stub $file"; return 1; } ;;
+		*) problem "$at: '$file' is not a file of $STAGE_DIR/"; return 1 ;;
+		esac
+		case $op:$arg:$snip:$extra in
+		include:\<*\>:: | include:\"*\"::) printf '#include %s\n' "$arg" | put_first "$dest/$file" ;;
+		prepend:?*::) snippet "$dir/$arg" "$at" && put_first "$dest/$file" <"$dir/$arg" ;;
+		replace:?*:?*:)
+			[[ $arg =~ ^[A-Za-z_][A-Za-z0-9_]*$ ]] || { problem "$at: '$arg' is not a function name"; return 1; }
+			snippet "$dir/$snip" "$at" && replace_todo "$dest/$file" "$arg" "$dir/$snip" "$at" ;;
+		*) problem "$at: not an operation: $line"; false ;;
+		esac || return 1
+	done <"$dir/RECIPE"
+}
+
+snippet() {  # snippet PATH WHERE: the snippet exists
+	[ -f "$1" ] || { problem "$2: no snippet $1"; return 1; }
+}
+
+put_first() {  # put_first FILE: what comes on stdin goes before FILE's content
+	cat - "$1" >"$1.new" && mv "$1.new" "$1"
+}
+
+# Replace the `LZ_TODO();` line in the body of FUNCTION, defined in FILE, with SNIPPET.
+replace_todo() {  # replace_todo FILE FUNCTION SNIPPET WHERE
+	local status=0
+	awk -v fn="$2" -v snip="$3" '
+	BEGIN { while ((getline line < snip) > 0) body[++nb] = line }
+	# The definition: at column 0 (a type, then the name and "("), not a declaration.
+	!in_fn && $0 ~ ("^[A-Za-z_].*[^A-Za-z0-9_]" fn "[ \t]*[(]") && $0 !~ /;[ \t]*$/ {
+		in_fn = 1; defined++
+	}
+	in_fn && !replaced && /^[ \t]*LZ_TODO[(][)];[ \t]*$/ {
+		indent = substr($0, 1, index($0, "L") - 1)
+		for (i = 1; i <= nb; i++)
+			print (body[i] == "" ? "" : indent body[i])
+		replaced = 1
+		next
+	}
+	in_fn && /^}/ { in_fn = 0 }
+	{ print }
+	END { exit defined != 1 ? 2 : !replaced ? 3 : 0 }' "$1" >"$1.new" || status=$?
+	case $status in
+	0) mv "$1.new" "$1"; return 0 ;;
+	2) problem "$4: ${1##*/} does not define $2 (exactly once)" ;;
+	3) problem "$4: $2 in ${1##*/} has no LZ_TODO(); line to replace" ;;
+	*) problem "$4: replacing $2 in $1 failed" ;;
+	esac
+	rm -f "$1.new"
+	return 1
 }
 
 # ---- grading a case ------------------------------------------------------------------
@@ -111,8 +205,10 @@ verdict() {  # verdict NAME SECONDS: count the case, print its problems
 		for p in "${problems[@]}"; do
 			echo "    $p"
 		done
-		echo "    the grader's table ($out/report.txt):"
-		sed 's/^/      /' "$out/report.txt" 2>/dev/null | head -n 40
+		if [ -s "$out/report.txt" ]; then
+			echo "    the grader's table ($out/report.txt):"
+			sed 's/^/      /' "$out/report.txt" | head -n 40
+		fi
 	fi
 	problems=()
 }
@@ -144,8 +240,10 @@ check_expect() {  # check_expect NAME EXPECT SECONDS
 
 fixture() {  # fixture NAME
 	local name=$1 t0=$SECONDS
-	grade_case "$name" "$FIXTURES/$name"
-	check_expect "$name" "$FIXTURES/$name/EXPECT" $((SECONDS - t0))
+	if build_fixture "$name" "$SUBS/$name"; then
+		grade_case "$name" "$SUBS/$name"
+		check_expect "$name" "$FIXTURES/$name/EXPECT" $((SECONDS - t0))
+	fi
 	verdict "$name" $((SECONDS - t0))
 }
 
@@ -169,7 +267,8 @@ reference_case() {
 class_case() {
 	local t0=$SECONDS subs=$tmp/class status=0 book row
 	mkdir -p "$subs" "$tmp/evil/01-lozenge"
-	tar -czf "$subs/half.tar.gz" -C "$FIXTURES/half" assignments
+	build_fixture half "$tmp/half" || { verdict class $((SECONDS - t0)); return; }
+	tar -czf "$subs/half.tar.gz" -C "$tmp/half" assignments
 	ln -s /etc/passwd "$tmp/evil/01-lozenge/fpsum.c"
 	tar -czf "$subs/evil.tgz" -C "$tmp/evil" 01-lozenge
 	bash tests/grade/grade.sh --build "$BUILD" --all "$subs" --stage "$STAGE" \

@@ -27,10 +27,8 @@
 # marks, fake result lines); a program written to attack the grader can still do
 # anything that user can. Grade untrusted code in a throw-away container or account
 # (Gradescope's autograder containers are such).
-set -euo pipefail
-export LC_ALL=C
-
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=lib/tools/common.sh
+. "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"  # strict mode, LC_ALL=C, ROOT
 MAX_FILE=$((1024 * 1024))           # bytes: a submitted file
 MAX_CAPTURE=$((1024 * 1024))        # bytes: the runner's output we read
 ULIMIT_F=$((20 * 1024))             # KiB: any file the tests write
@@ -81,15 +79,6 @@ select_stages() {  # select_stages NN|NN-name|''
 	die "no stage '$1'; the stages here are: ${all[*]}"
 }
 
-# The rubric files of a stage, relative to the tree root (the Makefile's list).
-rubrics_of() {  # rubrics_of STAGE
-	local r
-	for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-		[ -f "$ROOT/$r" ] && echo "$r"
-	done
-	return 0
-}
-
 # The paths a stage's MANIFEST lists, checked: relative, under assignments/, no '..'.
 manifest_of() {  # manifest_of STAGE
 	local m="$ROOT/tests/$1/MANIFEST" p
@@ -109,12 +98,7 @@ manifest_of() {  # manifest_of STAGE
 }
 
 budget_of() {  # budget_of STAGE: the rubric timeouts summed, plus slack, in seconds
-	local r sum=0 t
-	for r in $(rubrics_of "$1"); do
-		t=$(awk '{ sub(/#.*/, "") } NF >= 4 { s += $4 } END { printf "%d", s + 0.999 }' "$ROOT/$r")
-		sum=$((sum + t))
-	done
-	echo $((sum + SLACK))
+	echo $(($(rubric_seconds "$1") + SLACK))
 }
 
 # ---- the submission ------------------------------------------------------------

@@ -1,0 +1,50 @@
+# shellcheck shell=bash
+# common.sh — the preamble and helpers shared by the shell tools (lib/tools/*.sh: the
+# tests/grade/*.sh). Sourced, first thing, as
+#
+#   . "$(dirname "${BASH_SOURCE[0]}")/common.sh"                    (from lib/tools)
+#   . "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"   (from tests/grade)
+#
+# It sets strict mode and the C locale (stable sort order and messages) and ROOT, the
+# tree root. It does not change directory: grade.sh resolves its arguments against
+# the caller's directory first; the others `cd "$ROOT"` themselves.
+set -euo pipefail
+export LC_ALL=C
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+
+# Exit 2 with the usage line unless the script got MIN to MAX arguments (MAX: a
+# number, or `any`).
+need_args() {  # need_args NARGS MIN MAX USAGE
+	[ "$1" -ge "$2" ] && { [ "$3" = any ] || [ "$1" -le "$3" ]; } && return 0
+	echo "usage: $4" >&2
+	exit 2
+}
+
+# A private temporary directory in $tmp, removed when the script exits.
+make_tmp() {
+	tmp=$(mktemp -d)
+	trap 'rm -rf "$tmp"' EXIT
+}
+
+# The rubric files of a stage, relative to the tree root (the Makefile's list).
+rubrics_of() {  # rubrics_of STAGE
+	local r
+	for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
+		[ -f "$ROOT/$r" ] && echo "$r"
+	done
+	return 0
+}
+
+# Seconds: the timeouts of a stage's rubrics summed (before any slack or multiplier).
+rubric_seconds() {  # rubric_seconds STAGE
+	local r
+	for r in $(rubrics_of "$1"); do
+		cat "$ROOT/$r"
+	done | awk '{ sub(/#.*/, "") } NF >= 4 { s += $4 } END { printf "%d", s + 0.999 }'
+}
+
+# The total of a report.txt that lz-report wrote, as "GOT/MAX" (empty when none).
+score_of() {  # score_of REPORT_TXT
+	sed -n 's/^Score: \([0-9.]*\/[0-9.]*\)$/\1/p' "$1" 2>/dev/null | tail -n 1
+}
