@@ -1,6 +1,7 @@
 # shellcheck shell=bash
-# common.sh — the preamble and helpers shared by the shell tools (lib/tools/*.sh: the
-# tests/grade/*.sh). Sourced, first thing, as
+# common.sh — the preamble and helpers shared by the shell tools: the lesson, demo,
+# slides and handout tools (lib/tools/*.sh) and the grader (tests/grade/*.sh).
+# Sourced, first thing, as
 #
 #   . "$(dirname "${BASH_SOURCE[0]}")/common.sh"                    (from lib/tools)
 #   . "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"   (from tests/grade)
