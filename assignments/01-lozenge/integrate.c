@@ -16,7 +16,8 @@
  *
  * The state layout (which quantity lives at which time) is the table in
  * lib/include/lz/integrate.h. Every step calls lz_md_force(s) exactly once, at the
- * new positions, and advances s->t by dt. lz_md_step has already checked dt.
+ * new positions. lz_md_step has already checked dt, and advances the clock s->t
+ * itself afterwards.
  */
 #include "lz/error.h"
 #include "lz/integrate.h"
@@ -26,8 +27,8 @@
  * Both updates use the old state. */
 int lz_step_euler(lz_md *s, double dt)
 {
-	/* Hint: drift r with the OLD v, kick v with the old a, then lz_md_force(s) and
-	 * s->t += dt. Using the new v for r turns this into symplectic Euler.
+	/* Hint: drift r with the OLD v, kick v with the old a, then lz_md_force(s).
+	 * Using the new v for r turns this into symplectic Euler.
 	 * lz_axpy (lz/vec.h) is y += alpha x. See lessons/01-lozenge/README.md §1, §3. */
 	LZ_TODO();
 }

@@ -95,6 +95,8 @@ int lz_md_start(lz_md *s, lz_integrator m, double dt)
 		return status;
 	s->u_prev = s->u;
 	s->dt = dt;
+	s->t0 = s->t;
+	s->nsteps = 0;
 	s->v_lags = 0;
 	size_t len = s->n * (size_t)s->dim;
 	if (m == LZ_VERLET) {
@@ -130,10 +132,19 @@ int lz_md_step(lz_md *s, lz_integrator m, double dt)
 		return lz_error(LZ_EINVAL, "%s was started with dt = %.17g and cannot step with "
 		                "dt = %.17g; call lz_md_start again to change the step",
 		                lz_integrator_name(m), s->dt, dt);
+	if (dt != s->dt) {
+		s->t0 = s->t;
+		s->nsteps = 0;
+		s->dt = dt;
+	}
 	status = steps[m](s, dt);
+	if (status != LZ_OK)
+		return status;
+	s->nsteps++;
+	s->t = s->t0 + (double)s->nsteps * dt;
 	if (m == LZ_VERLET)
 		s->v_lags = 1;
-	return status;
+	return LZ_OK;
 }
 
 double lz_md_kinetic(const lz_md *s, lz_integrator m)

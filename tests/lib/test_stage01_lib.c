@@ -313,6 +313,31 @@ static int blow_up(size_t n, int dim, const double *r, double *a, double *u, voi
 	return LZ_OK;
 }
 
+/* The clock is t0 + k·dt, not a running sum: after 10^6 steps of dt = 0.1 it reads
+ * 10^5 to the last bit, where adding 0.1 each step would be off by ~1e-6. A change of
+ * dt re-bases it at the current time. */
+LZ_TEST(md_clock_does_not_accumulate_round_off)
+{
+	lz_harmonic p = {1.0};
+	lz_md *s = lz_md_alloc(1, 1, lz_harmonic_force, &p);
+	s->r[0] = 1.0;
+	ck_assert(lz_md_start(s, LZ_VELOCITY_VERLET, 0.1) == LZ_OK);
+	double sum = 0.0;
+	for (int k = 0; k < 1000000; k++) {
+		if (lz_md_step(s, LZ_VELOCITY_VERLET, 0.1) != LZ_OK)  /* no ck_assert: 1e6 pipe writes */
+			ck_abort_msg("step %d failed: %s", k, lz_error_message());
+		sum += 0.1;
+	}
+	ck_assert_msg(s->t == 1e5, "after 10^6 steps of 0.1 the clock reads %.17g, not 1e5 "
+	              "(a running sum reads %.17g)", s->t, sum);
+	ck_assert_int_eq(lz_md_step(s, LZ_VELOCITY_VERLET, 0.25), LZ_OK);
+	ck_assert_msg(s->t == 1e5 + 0.25 && s->t0 == 1e5 && s->nsteps == 1,
+	              "a new dt should re-base the clock at t = 1e5; t = %.17g, t0 = %.17g",
+	              s->t, s->t0);
+	lz_md_free(s);
+}
+END_TEST
+
 LZ_TEST(md_force_reports_non_finite)
 {
 	lz_md *s = lz_md_alloc(1, 1, blow_up, NULL);

@@ -17,7 +17,9 @@
  * position, so after a step v is the velocity one step back. s->u_prev holds the
  * potential energy at that same time, so lz_md_energy can pair them.
  *
- * Every step calls lz_md_force() exactly once and advances s->t by dt.
+ * Every step calls lz_md_force() exactly once. The clock is the library's: lz_md_step
+ * keeps t = t0 + k·dt from the step count k, because adding dt to t ten million
+ * times would lose ~1e-4 τ to round-off (the step functions leave t alone).
  */
 #ifndef LZ_INTEGRATE_H
 #define LZ_INTEGRATE_H
@@ -41,8 +43,10 @@ typedef enum {
 typedef struct {
 	size_t n;         /* particles */
 	int dim;          /* 1, 2 or 3 */
-	double t;         /* the time of r */
-	double dt;        /* the step the state was started with (verlet, leapfrog) */
+	double t;         /* the time of r: t0 + nsteps·dt, never accumulated */
+	double t0;        /* the time of the last (re)start: lz_md_start, or a change of dt */
+	unsigned long long nsteps;  /* steps of dt since t0 */
+	double dt;        /* the current step (fixed for verlet and leapfrog) */
 	double *r;        /* positions at t, n*dim */
 	double *v;        /* velocities, at the time the table above gives */
 	double *a;        /* accelerations F(r(t)) */
@@ -72,7 +76,9 @@ int lz_md_force(lz_md *s);
 int lz_md_start(lz_md *s, lz_integrator m, double dt);
 
 /* One step with integrator m (the graded functions below), after checking dt:
- * finite, > 0, and for verlet and leapfrog equal to the dt of lz_md_start. */
+ * finite, > 0, and for verlet and leapfrog equal to the dt of lz_md_start; then
+ * t = t0 + nsteps·dt. Another dt (euler, symplectic-euler, velocity-verlet) re-bases
+ * the clock: t0 = t, nsteps = 0. */
 int lz_md_step(lz_md *s, lz_integrator m, double dt);
 
 /* The kinetic energy Σ v²/2 and the total energy at one consistent time, which is
@@ -90,7 +96,8 @@ int lz_integrator_parse(const char *name, lz_integrator *m);
  * float between steps (one +, × in double then rounded equals the float result). */
 void lz_md_round_float(lz_md *s);
 
-/* ---- graded: one step of length dt (dt > 0, checked by lz_md_step) ----------- */
+/* ---- graded: one step of length dt (dt > 0, checked by lz_md_step, which also
+ * advances s->t) -------------------------------------------------------------- */
 
 /* Explicit Euler: r += dt v(t); v += dt a(t); then a = F(r(t+dt)). First order;
  * on the harmonic oscillator the energy grows by exactly (1 + ω²dt²) per step. */
