@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "lz/error.h"
 #include "lz/lesson.h"
@@ -21,6 +22,12 @@ int lz_lesson_args(int argc, char **argv, const char *stage, lz_lesson *L)
 	}
 	L->outdir = argv[1];
 	L->quick = argc == 3;
+	/* A driver run by hand gets its directory made, as lesson.sh would. */
+	if (mkdir(L->outdir, 0777) != 0 && errno != EEXIST) {
+		fprintf(stderr, "%s: cannot make the output directory %s: %s\n", L->name,
+		        L->outdir, strerror(errno));
+		return LZ_EIO;
+	}
 	lz_set_error_handler(lz_error_quiet);
 	return LZ_OK;
 }

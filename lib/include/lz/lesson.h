@@ -38,7 +38,8 @@ typedef struct {
 
 /* Parse `NAME OUTDIR [--quick]` into L for stage `stage` ("01"; kept, not copied).
  * On anything else prints "usage: NAME OUTDIR [--quick]" on stderr and returns
- * LZ_EINVAL: the driver then exits with status 2. Also installs lz_error_quiet as the
+ * LZ_EINVAL: the driver then exits with status 2. Makes OUTDIR when it is missing
+ * (its parent must exist; LZ_EIO otherwise). Also installs lz_error_quiet as the
  * error handler, because the driver reports an error once (lz_lesson_error). O(1). */
 int lz_lesson_args(int argc, char **argv, const char *stage, lz_lesson *L);
 
