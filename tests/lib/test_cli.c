@@ -1,6 +1,7 @@
 /* test_cli.c — the lz command, called in-process: a good scene runs and writes its
  * summary; every kind of bad input exits 2 with one line on stderr and leaves no
  * directory behind; the same seed gives the same summary. */
+#include <glob.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,7 +10,9 @@
 #include <unistd.h>
 
 #include "lz/cli.h"
+#include "lz/method.h"
 #include "lz/output.h"
+#include "lz/scene.h"
 #include "lztest.h"
 #include "support.h"
 
@@ -331,5 +334,48 @@ LZ_TEST(cli_list_and_help)
 	setenv("LZ_SCENES", lzt_path(dir, "none"), 1);
 	ck_assert_msg(lz("list", NULL) != 0, "lz list of a missing directory should fail");
 	cleanup();
+}
+END_TEST
+
+/* Every ready-made scene must bind against its method: a key renamed in a method's
+ * table would otherwise break `make lesson` and the demo, not a test. */
+LZ_TEST(shipped_scenes_all_bind)
+{
+	glob_t g;
+	ck_assert_msg(glob("datasets/scenes/*.scene", 0, NULL, &g) == 0 && g.gl_pathc > 0,
+	              "no scenes found in datasets/scenes (run the tests from the tree root)");
+	for (size_t i = 0; i < g.gl_pathc; i++) {
+		lz_scene *s = lz_scene_read(g.gl_pathv[i]);
+		ck_assert_msg(s != NULL, "%s", lz_error_message());
+		const lz_method *m = lz_method_find(lz_scene_method(s));
+		ck_assert_msg(m != NULL, "%s names no known method", g.gl_pathv[i]);
+		ck_assert_msg(lz_scene_bind(s, m) == LZ_OK, "%s", lz_error_message());
+		lz_scene_free(s);
+	}
+	globfree(&g);
+}
+END_TEST
+
+/* datasets/scenes/README.md documents every key of every method (its tables are
+ * `lz help METHOD`); a key missing there is a key nobody can find. */
+LZ_TEST(scenes_readme_lists_every_key)
+{
+	char *text = lzt_slurp("datasets/scenes/README.md", NULL);
+	ck_assert_msg(text != NULL, "datasets/scenes/README.md is missing");
+	size_t n;
+	const lz_method *const *all = lz_methods(&n);
+	for (size_t i = 0; i < n; i++) {
+		char row[128];
+		snprintf(row, sizeof row, "### %s", all[i]->name);
+		ck_assert_msg(strstr(text, row) != NULL, "datasets/scenes/README.md has no "
+		              "section '%s'", row);
+		for (size_t k = 0; k < all[i]->nkeys; k++) {
+			snprintf(row, sizeof row, "\n| %s ", all[i]->keys[k].name);
+			ck_assert_msg(strstr(text, row) != NULL, "datasets/scenes/README.md does not "
+			              "list key '%s' of method %s: paste `lz help %s` into it",
+			              all[i]->keys[k].name, all[i]->name, all[i]->name);
+		}
+	}
+	free(text);
 }
 END_TEST
