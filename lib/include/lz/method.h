@@ -36,5 +36,7 @@ const lz_method *const *lz_methods(size_t *n);
 
 /* The engines (each defined in its own lib/src/method_*.c). */
 extern const lz_method lz_method_verlet;
+extern const lz_method lz_method_walk;
+extern const lz_method lz_method_lattice_gas;
 
 #endif

@@ -1,0 +1,83 @@
+/* test_stage02_walk.c — the library half of lz/walk.h and the `walk` method, which
+ * students do not write: the packing fraction, the input checks of lz_walk_alloc
+ * (all made before any graded code runs) and the scene checks of method walk. None
+ * of these tests calls a graded function, so they pass with the stubs as well. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lz/lattice.h"
+#include "lz/method.h"
+#include "lz/scene.h"
+#include "lz/walk.h"
+#include "lztest.h"
+
+LZ_TEST(walk_packing_fraction)
+{
+	/* 100 disks of R = 2 on 64² square sites: 100·4π/4096. */
+	ck_assert(fabs(lz_walk_packing(LZ_LATTICE_SQUARE, 64, 2, 100) - 400 * M_PI / 4096) < 1e-15);
+	/* Triangular sites own √3/2 each. */
+	ck_assert(fabs(lz_walk_packing(LZ_LATTICE_TRIANGULAR, 64, 2, 100) -
+	               400 * M_PI / (4096 * sqrt(3) / 2)) < 1e-14);
+	ck_assert(fabs(lz_walk_packing(LZ_LATTICE_CUBIC, 16, 1, 3) - 4 * M_PI / 4096) < 1e-15);
+	ck_assert(isnan(lz_walk_packing(LZ_NLATTICES, 16, 1, 3)));
+}
+END_TEST
+
+LZ_TEST(walk_alloc_rejects_bad_input)
+{
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 100, 2, 10, LZ_WALK_RANDOM) == NULL);
+	ck_assert_msg(strstr(lz_error_message(), "100"), "the message should name the side: %s",
+	              lz_error_message());
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 1, 0.2, 1, LZ_WALK_RANDOM) == NULL);
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 17, 1, LZ_WALK_RANDOM) == NULL);
+	ck_assert_msg(strstr(lz_error_message(), "too large") && strstr(lz_error_message(), "16"),
+	              "radius too large: %s", lz_error_message());
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 0, 1, LZ_WALK_RANDOM) == NULL);
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 64, NAN, 1, LZ_WALK_RANDOM) == NULL);
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 2, 0, LZ_WALK_RANDOM) == NULL);
+	ck_assert(lz_walk_alloc(LZ_NLATTICES, 64, 2, 1, LZ_WALK_RANDOM) == NULL);
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 2, 1, (lz_walk_motion)7) == NULL);
+	/* 300 disks of R = 2 on 64²: η = 0.92 > π/√12. */
+	ck_assert(lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 2, 300, LZ_WALK_RANDOM) == NULL);
+	ck_assert_msg(strstr(lz_error_message(), "close packing"), "beyond close packing: %s",
+	              lz_error_message());
+}
+END_TEST
+
+static int bind_walk(const char *assignments)
+{
+	lz_scene *s = lz_scene_new("test");
+	char buf[512];
+	snprintf(buf, sizeof buf, "%s", assignments);
+	for (char *tok = strtok(buf, ";"); tok; tok = strtok(NULL, ";"))
+		ck_assert(lz_scene_set(s, tok, "test") == LZ_OK);
+	int status = lz_scene_bind(s, &lz_method_walk);
+	lz_scene_free(s);
+	return status;
+}
+
+LZ_TEST(walk_scene_checks)
+{
+	ck_assert_msg(lz_method_find("walk") == &lz_method_walk, "method walk is not registered");
+	ck_assert_msg(bind_walk("n=10") == LZ_OK, "a minimal walk scene: %s", lz_error_message());
+	ck_assert_msg(bind_walk("packing=0.3;lattice=triangular;observe=gr") == LZ_OK,
+	              "a packing scene: %s", lz_error_message());
+	ck_assert_msg(bind_walk("lattice=cubic;size=32;radius=2;packing=0.2") == LZ_OK, "3D: %s",
+	              lz_error_message());
+	ck_assert(bind_walk("size=100;n=10") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "100"));
+	ck_assert(bind_walk("size=64;radius=17;n=1") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "too large"));
+	ck_assert(bind_walk("radius=3") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "exactly one"));
+	ck_assert(bind_walk("n=10;packing=0.3") == LZ_EINVAL);
+	ck_assert(bind_walk("n=300;radius=2") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "close packing"));
+	ck_assert(bind_walk("lattice=cubic;size=16;radius=2;packing=0.8") == LZ_EINVAL);
+	ck_assert(bind_walk("packing=1e-6") == LZ_EINVAL);
+	ck_assert(bind_walk("n=1;observe=gr") == LZ_EINVAL);
+	ck_assert(bind_walk("n=10;lattice=hexagonal") == LZ_EINVAL);
+	ck_assert(bind_walk("n=10;motion=levy") == LZ_EINVAL);
+}
+END_TEST
