@@ -27,7 +27,7 @@ int lz_walk_try_move(lz_walk *w, size_t i, int d)
 	 * lz_lattice_min_dist2(w->box, dx, dy, dz): below w->sigma2 is an overlap and the
 	 * move is rejected. Touching (d2 == sigma2) is allowed. Count the offer in
 	 * w->moves, an acceptance in w->accepted. See the walkers section of
-	 * lessons/02-lattice/README.md. */
+	 * lessons/02-lattice/README.md §6. */
 	LZ_TODO();
 }
 
@@ -38,6 +38,6 @@ size_t lz_walk_sweep(lz_walk *w, gsl_rng *rng)
 	/* Hint: for i = 0 .. n-1 in order. Random walk: dir[i] = gsl_rng_uniform_int(rng,
 	 * ndir), then try the move. Ballistic: try dir[i]; only if it is rejected draw a
 	 * new dir[i]. Return how many moves were accepted. The thesis's driver loop is in
-	 * the walkers section of lessons/02-lattice/README.md. */
+	 * lessons/02-lattice/README.md §6. */
 	LZ_TODO();
 }

@@ -27,7 +27,7 @@ void lz_lgas_table(lz_lgas_model model, uint8_t table[LZ_LGAS_TABLE_SIZE])
 	 * of holes) or lz_site_rotate(s, 2) == s (the triples {0,2,4}, {1,3,5}); it then
 	 * becomes lz_site_rotate(s, c ? -1 : +1). The empty and the full site satisfy both
 	 * tests and turn into themselves. HPP uses four bits: only 0x5 <-> 0xA change.
-	 * See lessons/02-lattice/README.md (the lattice gas). */
+	 * See lessons/02-lattice/README.md §7. */
 	/* LZ_SOLUTION_BEGIN */
 	for (unsigned c = 0; c < 2; c++)
 		for (unsigned s = 0; s < 64; s++) {
@@ -51,7 +51,7 @@ void lz_lgas_propagate(lz_lgas *g)
 	 * lz_lgas_lattice(g->model)), wrapped with & g->mask: next = (old & LZ_LGAS_WALL) |
 	 * OR over k of (site[from] & (1 << k)). Write into g->next, then swap the pointers.
 	 * A wrong sign sends particles backwards; a forgotten mask reads outside the array.
-	 * See lessons/02-lattice/README.md (the lattice gas). */
+	 * See lessons/02-lattice/README.md §7. */
 	/* LZ_SOLUTION_BEGIN */
 	int n;
 	const lz_site *e = lz_lattice_dirs(lz_lgas_lattice(g->model), &n);
@@ -85,7 +85,7 @@ void lz_lgas_collide(lz_lgas *g, const uint8_t table[LZ_LGAS_TABLE_SIZE], gsl_rn
 	 * LZ_LGAS_WALL keeps the wall bit and has every particle reversed (rotate by 3 of 6
 	 * for FHP, by 2 of 4 for HPP); any other s becomes table[(c << 6) | s]. Use a
 	 * fresh chirality per site: one bit for the whole lattice makes the flow chiral.
-	 * See lessons/02-lattice/README.md (the lattice gas). */
+	 * See lessons/02-lattice/README.md §7. */
 	/* LZ_SOLUTION_BEGIN */
 	size_t n = (size_t)g->side * (size_t)g->side;
 	int word = gsl_rng_max(rng) == 0xFFFFFFFFul && gsl_rng_min(rng) == 0;
