@@ -1,4 +1,4 @@
-/* gr_ideal — lesson 02, experiment 4 (§4, §5, §6): g(r) of an ideal gas on a lattice,
+/* gr_ideal — lesson 02, experiment 4 (§4, §5, §8): g(r) of an ideal gas on a lattice,
  * raw and corrected.
  *
  * N points are thrown independently and uniformly on the sites of a periodic box

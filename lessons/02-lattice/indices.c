@@ -1,4 +1,4 @@
-/* indices — lesson 02, experiment 1 (§1, §6): the order of indices and the cache.
+/* indices — lesson 02, experiment 1 (§1, §8): the order of indices and the cache.
  *
  * A square n×n array of int32 (a lattice of n² sites, C stores it row after row)
  * is swept once with the last index in the inner loop (row order: consecutive

@@ -1,4 +1,4 @@
-/* shells — lesson 02, experiment 3 (§5, §6): lattice points per shell and the lattice
+/* shells — lesson 02, experiment 3 (§5, §8): lattice points per shell and the lattice
  * measure correction.
  *
  * For the square, triangular (sheared, d² = dx² + dx·dy + dy²) and simple cubic
