@@ -5,7 +5,7 @@
 # [key=value ...]`; keys with comma lists are swept, every combination runs REPEATS
 # times (default 3) as `lz run SCENE key=value ... --quiet`. From each run's
 # summary.json it takes the speed figures (steps_per_s, atomsteps_per_s, and any
-# other *_per_s), state_bytes_per_particle and wall_s, and reports the median over the
+# other *_per_s), state_bytes_per_particle (or _per_site) and wall_s, and reports the median over the
 # repeats: a table on stdout and BUILD/bench/NN-name.json per stage (the stage is the
 # NN- prefix of the scene name), with the machine and the date. Benchmarks measure
 # speed only; correctness is the tests' job.
@@ -38,6 +38,8 @@ json_num() {
 }
 # The *_per_s keys of a summary, in file order.
 speed_keys() { sed -n 's/^[[:space:]]*"\([a-z_]*_per_s\)".*/\1/p' "$1"; }
+# The memory figure of a summary: state_bytes_per_particle, _per_site, ...
+bytes_keys() { sed -n 's/^[[:space:]]*"\(state_bytes_per_[a-z]*\)".*/\1/p' "$1"; }
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print ""; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 json_str() { printf '"%s"' "$(printf '%s' "$1" | sed 's/\\/\\\\/g; s/"/\\"/g')"; }
 
@@ -62,7 +64,9 @@ expand() {
 results=$out/results.tsv  # stage, scene, params, then key=value figures
 : >"$results"
 failed=0
-printf '%-14s %-46s %12s %14s %7s %8s\n' scene parameters steps/s atom-steps/s B/part wall_s
+# The table shows each method's headline speed (DESIGN §8): atom-steps, site updates or
+# events per second when the method reports one, else steps per second.
+printf '%-14s %-46s %11s %-19s %13s %8s\n' scene parameters speed unit bytes wall_s
 lineno=0
 while IFS= read -r line || [ -n "$line" ]; do
 	lineno=$((lineno + 1))
@@ -90,15 +94,21 @@ while IFS= read -r line || [ -n "$line" ]; do
 			figures+=("$dir/summary.json")
 		done
 		row="$stage_nn	$scene	$params"
-		for key in $(speed_keys "${figures[0]}") state_bytes_per_particle wall_s; do
+		for key in $(speed_keys "${figures[0]}") $(bytes_keys "${figures[0]}") wall_s; do
 			m=$(for f in "${figures[@]}"; do json_num "$f" "$key"; done | median)
 			row="$row	$key=$m"
 		done
 		printf '%s\n' "$row" >>"$results"
 		printf '%s\n' "$row" | awk -F '\t' '{
-			for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
-			printf "%-14s %-46s %12.4g %14.4g %7s %8.3f\n", $2, $3, f["steps_per_s"],
-			       f["atomsteps_per_s"], f["state_bytes_per_particle"], f["wall_s"] }'
+			bytes = ""
+			for (i = 4; i <= NF; i++) {
+				split($i, kv, "="); f[kv[1]] = kv[2]
+				if (kv[1] ~ /^state_bytes_per_/) bytes = kv[2] "/" substr(kv[1], 17)
+			}
+			n = split("atomsteps_per_s site_updates_per_s events_per_s steps_per_s", order, " ")
+			for (k = 1; k <= n && !(order[k] in f); k++) ;
+			key = k <= n ? order[k] : "steps_per_s"
+			printf "%-14s %-46s %11.4g %-19s %13s %8.3f\n", $2, $3, f[key], key, bytes, f["wall_s"] }'
 	done < <(expand "${words[@]:1}")
 done <"$list"
 
