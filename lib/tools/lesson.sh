@@ -3,9 +3,10 @@
 #
 #   1. every experiment driver built from lessons/STAGE/*.c, alphabetically, as
 #      BUILD/lessons/NN/bin/NAME OUTDIR [--quick], its output kept in OUTDIR/NAME.log;
-#   2. every plot script lessons/STAGE/*.gp, with gnuplot running inside OUTDIR
-#      (skipped with a note when gnuplot is not installed);
-#   3. every scene datasets/scenes/NN-*.scene, as lz run SCENE --out OUTDIR/runs/NAME.
+#   2. every scene datasets/scenes/NN-*.scene, as lz run SCENE --out OUTDIR/runs/NAME;
+#   3. every plot script lessons/STAGE/*.gp, with gnuplot running inside OUTDIR
+#      (skipped with a note when gnuplot is not installed), so a plot may draw the
+#      drivers' data and the scene runs' (runs/NAME/*.dat).
 # OUTDIR is BUILD/lessons/NN. QUICK=1 runs the demo size. Exit status 1 when any
 # step failed (the table at the end says which).
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -90,6 +91,30 @@ for src in "$lesson_dir"/*.c; do
 done
 rm -f "$out/.start"
 
+echo "== scenes"
+scenes=(datasets/scenes/"$nn"-*.scene)
+if [ ${#scenes[@]} = 0 ]; then
+	echo "-- no scenes datasets/scenes/$nn-*.scene"
+elif [ ! -x "$lz" ]; then
+	for scene in "${scenes[@]}"; do
+		record scene "$(basename "$scene" .scene)" "not built" 0 "$lz is missing"
+	done
+else
+	for scene in "${scenes[@]}"; do
+		name=$(basename "$scene" .scene)
+		echo "-- $name"
+		t0=$(now)
+		rc=0
+		"$lz" run "$scene" --out "$out/runs/$name" --quiet >"$out/$name.scene.log" 2>&1 || rc=$?
+		secs=$(elapsed "$t0" "$(now)")
+		if [ "$rc" = 0 ] && [ -f "$out/runs/$name/summary.json" ]; then
+			record scene "$name" ok "$secs" "runs/$name/summary.json"
+		else
+			record scene "$name" FAILED "$secs" "$(head -c 120 "$out/$name.scene.log" | head -1)"
+		fi
+	done
+fi
+
 echo "== plots"
 if ! command -v gnuplot >/dev/null 2>&1; then
 	for gp in "$lesson_dir"/*.gp; do
@@ -113,30 +138,6 @@ else
 		else
 			record plot "$name.png" FAILED "$secs" "see $out/$name.gp.log"
 			sed 's/^/   /' "$out/$name.gp.log" | head -5
-		fi
-	done
-fi
-
-echo "== scenes"
-scenes=(datasets/scenes/"$nn"-*.scene)
-if [ ${#scenes[@]} = 0 ]; then
-	echo "-- no scenes datasets/scenes/$nn-*.scene"
-elif [ ! -x "$lz" ]; then
-	for scene in "${scenes[@]}"; do
-		record scene "$(basename "$scene" .scene)" "not built" 0 "$lz is missing"
-	done
-else
-	for scene in "${scenes[@]}"; do
-		name=$(basename "$scene" .scene)
-		echo "-- $name"
-		t0=$(now)
-		rc=0
-		"$lz" run "$scene" --out "$out/runs/$name" --quiet >"$out/$name.scene.log" 2>&1 || rc=$?
-		secs=$(elapsed "$t0" "$(now)")
-		if [ "$rc" = 0 ] && [ -f "$out/runs/$name/summary.json" ]; then
-			record scene "$name" ok "$secs" "runs/$name/summary.json"
-		else
-			record scene "$name" FAILED "$secs" "$(head -c 120 "$out/$name.scene.log" | head -1)"
 		fi
 	done
 fi
