@@ -32,11 +32,8 @@ double lz_shell_volume(int dim, int k)
 
 lz_gr *lz_gr_alloc(lz_lattice_kind kind, int64_t side, int max_r, size_t n)
 {
-	int dim = lz_lattice_dim(kind);
+	int dim = lz_lattice_kind_side_check(kind, side);
 	if (dim == 0)
-		return lz_error(LZ_EINVAL, "lattice kind %d is not one of the %d kinds", (int)kind,
-		                LZ_NLATTICES), NULL;
-	if (lz_lattice_side_check(side) != LZ_OK)
 		return NULL;
 	int cap = dim == 3 ? LZ_GR_MAX_SHELLS_3D : LZ_GR_MAX_SHELLS_2D;
 	if (max_r < 1 || max_r > side / 2 || max_r > cap)

@@ -102,12 +102,17 @@ int lz_lattice_side_check(int64_t side)
 	return lz_check_pow2("side", (uint64_t)side, LZ_LATTICE_SIDE_MAX);
 }
 
-lz_lattice_box *lz_lattice_box_alloc(lz_lattice_kind kind, int64_t side)
+int lz_lattice_kind_side_check(lz_lattice_kind kind, int64_t side)
 {
 	if (!valid(kind))
 		return lz_error(LZ_EINVAL, "lattice kind %d is not one of the %d kinds", (int)kind,
-		                LZ_NLATTICES), NULL;
-	if (lz_lattice_side_check(side) != LZ_OK)
+		                LZ_NLATTICES), 0;
+	return lz_lattice_side_check(side) == LZ_OK ? lz_lattice_dim(kind) : 0;
+}
+
+lz_lattice_box *lz_lattice_box_alloc(lz_lattice_kind kind, int64_t side)
+{
+	if (lz_lattice_kind_side_check(kind, side) == 0)
 		return NULL;
 	lz_lattice_box *b = malloc(sizeof *b);
 	int32_t *dc = malloc((size_t)side * sizeof *dc);

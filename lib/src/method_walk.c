@@ -2,10 +2,11 @@
  * moved by random walk or ballistically with rejection of overlapping moves
  * (lz/walk.h, thesis 2.2 and 2.4.1).
  *
- * A run places the particles at random (random sequential placement), runs
- * `equilibrate` sweeps, then `steps` measured sweeps; with observe = gr it adds every
- * `sample`-th configuration to a g(r) accumulator (lz/gr.h, σ = 2R) and writes
- * gr.dat. It always writes the final configuration (config.dat) and summarises the
+ * A run places the particles at random (random sequential placement; inside the slit
+ * with walls = slit), runs `equilibrate` sweeps, then `steps` measured sweeps; every
+ * `sample`-th configuration goes to a g(r) accumulator (observe = gr, lz/gr.h, σ =
+ * 2R; gr.dat) or to a density profile across the slit (observe = profile,
+ * lz/profile.h; profile.dat). It always writes the final configuration (config.dat) and summarises the
  * acceptance, the packing fraction and the speed in atom-steps per second (the
  * sweeps alone are timed, not the g(r) sampling).
  */
@@ -17,20 +18,24 @@
 #include "lz/gr.h"
 #include "lz/lattice.h"
 #include "lz/method.h"
+#include "lz/profile.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
 #include "lz/timer.h"
 #include "lz/walk.h"
 
-enum { OBSERVE_NONE, OBSERVE_GR };
+enum { OBSERVE_NONE, OBSERVE_GR, OBSERVE_PROFILE };
+enum { WALLS_NONE, WALLS_SLIT };
 
 /* The densest packings: hexagonal disks π/√12, fcc spheres π/√18. */
 #define CLOSE_2D 0.90689968211710892
 #define CLOSE_3D 0.74048048969306104
 
 static const lz_key keys[] = {
-	{"lattice", LZ_KEY_ENUM, "square", 0, 0, 0, 0, "square|square8|triangular|cubic", NULL,
-	 "lattice and its moves: 4, 4+4 diagonal, 6 (sheared) neighbours; cubic is 3D with 6"},
+	{"lattice", LZ_KEY_ENUM, "square", 0, 0, 0, 0,
+	 "square|square8|triangular|cubic|cubic18|cubic26", NULL,
+	 "lattice and its moves: 4, 4+4 diagonal, 6 (sheared) neighbours in 2D; 6 faces, "
+	 "+12 edges, +8 corners in 3D"},
 	{"size", LZ_KEY_INT, "64", 2, LZ_LATTICE_SIDE_MAX, 0, 0, NULL, "sites",
 	 "box side L in lattice units, a power of two (periodic in every direction)"},
 	{"radius", LZ_KEY_REAL, "3", 0, LZ_LATTICE_SIDE_MAX / 4, 1, 0, NULL, "lattice units",
@@ -38,17 +43,25 @@ static const lz_key keys[] = {
 	{"n", LZ_KEY_INT, "", 1, 1e7, 0, 0, NULL, NULL,
 	 "number of particles (give n or packing, not both)"},
 	{"packing", LZ_KEY_REAL, "", 0, CLOSE_2D, 1, 0, NULL, NULL,
-	 "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D); n is rounded from it"},
+	 "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), of the slit N·πR²/(L·H) "
+	 "with walls = slit; n is rounded from it"},
 	{"motion", LZ_KEY_ENUM, "walk", 0, 0, 0, 0, "walk|ballistic", NULL,
 	 "walk: a new random direction every step; ballistic: keep it until a collision"},
 	{"steps", LZ_KEY_INT, "1000", 1, 1e12, 0, 0, NULL, "sweeps",
 	 "measured ensemble steps (one move offered to every particle each)"},
 	{"equilibrate", LZ_KEY_INT, "0", 0, 1e12, 0, 0, NULL, "sweeps",
 	 "sweeps run and discarded before the measured ones"},
-	{"observe", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|gr", NULL,
-	 "gr: accumulate g(r) (raw and lattice-corrected) into gr.dat"},
+	{"walls", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|slit", NULL,
+	 "slit: hard walls across the last axis (y; z in 3D), slit_width apart; periodic "
+	 "along the others"},
+	{"slit_width", LZ_KEY_REAL, "", 0, LZ_LATTICE_SIDE_MAX, 1, 1, NULL, "lattice units",
+	 "distance H between the walls (Cartesian); centres keep R from both; at most L "
+	 "(L·√3/2 triangular)"},
+	{"observe", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|gr|profile", NULL,
+	 "gr: g(r) raw and lattice-corrected into gr.dat (no walls); profile: the density "
+	 "across the last axis into profile.dat"},
 	{"sample", LZ_KEY_INT, "10", 1, 1e12, 0, 0, NULL, "sweeps",
-	 "add a configuration to g(r) every k sweeps (observe = gr)"},
+	 "add a configuration to g(r) or the profile every k sweeps"},
 	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
 	 "random seed of the placement and the moves"},
 };
@@ -58,8 +71,21 @@ static const lz_key keys[] = {
 static lz_lattice_kind scene_kind(const lz_scene *s)
 {
 	static const lz_lattice_kind kinds[] = {LZ_LATTICE_SQUARE, LZ_LATTICE_SQUARE8,
-	                                        LZ_LATTICE_TRIANGULAR, LZ_LATTICE_CUBIC};
+	                                        LZ_LATTICE_TRIANGULAR, LZ_LATTICE_CUBIC,
+	                                        LZ_LATTICE_CUBIC18, LZ_LATTICE_CUBIC26};
 	return kinds[lz_scene_enum(s, "lattice")];
+}
+
+/* The packing fraction of n particles: of the box, or of the slit. */
+static double scene_packing(const lz_scene *s, long long n)
+{
+	lz_lattice_kind kind = scene_kind(s);
+	long long side = lz_scene_int(s, "size");
+	double radius = lz_scene_real(s, "radius");
+	if (lz_scene_enum(s, "walls") == WALLS_SLIT)
+		return lz_walk_slit_packing(lz_lattice_dim(kind), side,
+		                            lz_scene_real(s, "slit_width"), radius, (size_t)n);
+	return lz_walk_packing(kind, side, radius, (size_t)n);
 }
 
 /* n as given, or rounded from the packing fraction. */
@@ -67,9 +93,28 @@ static long long scene_n(const lz_scene *s)
 {
 	if (lz_scene_has(s, "n"))
 		return lz_scene_int(s, "n");
-	lz_lattice_kind kind = scene_kind(s);
-	double one = lz_walk_packing(kind, lz_scene_int(s, "size"), lz_scene_real(s, "radius"), 1);
-	return llround(lz_scene_real(s, "packing") / one);
+	return llround(lz_scene_real(s, "packing") / scene_packing(s, 1));
+}
+
+/* The walls: slit_width exactly when walls = slit, and a width lz_walk_set_slit
+ * accepts (tried on a one-particle walker, so the rules live in one place). */
+static int check_walls(const lz_scene *s)
+{
+	int slit = lz_scene_enum(s, "walls") == WALLS_SLIT, has_w = lz_scene_has(s, "slit_width");
+	if (slit != has_w)
+		return lz_scene_fail(s, slit ? "walls" : "slit_width", "%s", slit ?
+		                     "walls = slit needs slit_width (the distance between the walls)" :
+		                     "slit_width is given but walls = none; add walls = slit");
+	if (!slit)
+		return LZ_OK;
+	if (lz_scene_enum(s, "observe") == OBSERVE_GR)
+		return lz_scene_fail(s, "observe", "observe = gr needs walls = none: g(r) assumes a "
+		                     "homogeneous periodic box; use observe = profile in a slit");
+	lz_walk *w = lz_walk_alloc(scene_kind(s), lz_scene_int(s, "size"),
+	                           lz_scene_real(s, "radius"), 1, LZ_WALK_RANDOM);
+	int status = w ? lz_walk_set_slit(w, lz_scene_real(s, "slit_width")) : LZ_ENOMEM;
+	lz_walk_free(w);
+	return status == LZ_OK ? LZ_OK : lz_scene_fail(s, "slit_width", "%s", lz_error_message());
 }
 
 static int check(const lz_scene *s)
@@ -82,6 +127,8 @@ static int check(const lz_scene *s)
 		return lz_scene_fail(s, "radius", "radius = %g is too large for size = %lld: the "
 		                     "diameter 2R must be at most L/2, so R <= %lld", radius, side,
 		                     side / 4);
+	if (check_walls(s) != LZ_OK)
+		return LZ_EINVAL;
 	int has_n = lz_scene_has(s, "n"), has_p = lz_scene_has(s, "packing");
 	if (has_n == has_p)
 		return lz_scene_fail(s, has_n ? "packing" : "radius", "give exactly one of n and "
@@ -92,12 +139,13 @@ static int check(const lz_scene *s)
 		return lz_scene_fail(s, "packing", "packing = %g is less than one particle of radius "
 		                     "%g in a box of side %lld", lz_scene_real(s, "packing"), radius,
 		                     side);
-	double eta = lz_walk_packing(kind, side, radius, (size_t)n);
+	double eta = scene_packing(s, n);
 	double close = lz_lattice_dim(kind) == 2 ? CLOSE_2D : CLOSE_3D;
 	if (eta > close)
 		return lz_scene_fail(s, has_n ? "n" : "packing", "n = %lld particles of radius %g "
-		                     "in a box of side %lld pack %.4f, beyond close packing %.4f in "
-		                     "%dD", n, radius, side, eta, close, lz_lattice_dim(kind));
+		                     "in a %s of side %lld pack %.4f, beyond close packing %.4f in "
+		                     "%dD", n, radius, lz_scene_enum(s, "walls") ? "slit" : "box",
+		                     side, eta, close, lz_lattice_dim(kind));
 	if (lz_scene_enum(s, "observe") == OBSERVE_GR && n < 2)
 		return lz_scene_fail(s, "observe", "observe = gr needs at least 2 particles (n = %lld)",
 		                     n);
@@ -178,33 +226,116 @@ static int write_gr(const lz_gr *g, double sigma, const lz_run *run)
 	return status;
 }
 
-/* walk.gp: g(r) when it was observed, otherwise the configuration (2D). */
+/* The profile in reduced units, ρσ^dim, row by row (rows lo .. hi). */
+static int profile_reduced(const lz_walk *w, const lz_profile *p, double *rho)
+{
+	int status = lz_profile_result(p, rho);
+	double scale = pow(2 * w->radius, w->dim);
+	for (int c = 0; status == LZ_OK && c <= p->hi - p->lo; c++)
+		rho[c] *= scale;
+	return status;
+}
+
+/* Contact (the mean of the two wall rows) and middle (the middle fifth of the rows)
+ * reduced densities: at a hard wall the contact density is the pressure, βP = ρ(contact). */
+static int profile_summary(const lz_walk *w, const lz_profile *p, lz_json *j)
+{
+	int rows = p->hi - p->lo + 1;
+	double *rho = malloc((size_t)rows * sizeof *rho);
+	if (!rho)
+		return lz_error(LZ_ENOMEM, "no memory for %d profile rows", rows);
+	int status = profile_reduced(w, p, rho);
+	if (status == LZ_OK) {
+		int a = rows / 2 - rows / 10, b = rows / 2 + rows / 10;
+		double mid = 0;
+		for (int c = a; c <= b; c++)
+			mid += rho[c] / (b - a + 1);
+		lz_json_num(j, "contact_density", (rho[0] + rho[rows - 1]) / 2);
+		lz_json_num(j, "middle_density", mid);
+		lz_json_int(j, "profile_samples", (long long)p->nsamples);
+	}
+	free(rho);
+	return status;
+}
+
+static int write_profile(const lz_walk *w, const lz_profile *p, const lz_run *run)
+{
+	static const char *const names[] = {"z/sigma", "rho_reduced"};
+	static const char *const units[] = {"σ = 2R, from contact with the lower wall", "ρσ^dim"};
+	int rows = p->hi - p->lo + 1;
+	double *rho = malloc((size_t)rows * sizeof *rho);
+	if (!rho)
+		return lz_error(LZ_ENOMEM, "no memory for %d profile rows", rows);
+	int status = profile_reduced(w, p, rho);
+	char path[4200], title[240];
+	lz_data *d = NULL;
+	if (status == LZ_OK)
+		status = lz_rundir_file(run->dir, "profile.dat", path, sizeof path);
+	if (status == LZ_OK) {
+		snprintf(title, sizeof title, "density across a slit of width %g (walls at z/σ = "
+		         "-0.5 and %g), %zu disks of radius %g on the %s lattice, %llu configurations",
+		         w->slit_width, w->slit_width / (2 * w->radius) - 0.5, w->n, w->radius,
+		         lz_lattice_name(w->box->kind), (unsigned long long)p->nsamples);
+		d = lz_data_open(path, title, 2, names, units);
+		status = d ? LZ_OK : LZ_EIO;
+	}
+	double h = lz_walk_row_spacing(w->box->kind), sigma = 2 * w->radius;
+	for (int c = 0; status == LZ_OK && c < rows; c++) {
+		double row[2] = {((p->lo + c) * h - w->radius) / sigma, rho[c]};
+		lz_data_row(d, row);
+	}
+	if (d && lz_data_close(d) != LZ_OK && status == LZ_OK)
+		status = LZ_EIO;
+	free(rho);
+	return status;
+}
+
+/* The plot of walk.gp below its terminal lines: g(r), the profile, or the disks. */
+static void plot_body(FILE *f, const lz_walk *w, int observe, double eta)
+{
+	const char *lattice = lz_lattice_name(w->box->kind);
+	if (observe == OBSERVE_GR)
+		fprintf(f, "set grid\nset title \"hard disks on the %s lattice, R = %g, η = %.3f\"\n"
+		        "set xlabel 'r / σ'\nset ylabel 'g(r)'\nset xrange [0:*]\n"
+		        "plot 'gr.dat' u 1:2 w l lw 1 lc rgb '#bbbbbb' t 'raw (exact shell area)', "
+		        "'' u 1:3 w lp pt 7 ps 0.5 lw 2 t 'corrected (lattice point count)', "
+		        "1 w l dt 2 lc rgb 'black' t 'ideal gas'\n", lattice, w->radius, eta);
+	else if (observe == OBSERVE_PROFILE)
+		fprintf(f, "set grid\nset title \"%zu hard %s in a slit %g wide, R = %g (%s), η = "
+		        "%.3f\"\nset xlabel 'z / σ from contact with the lower wall'\n"
+		        "set ylabel 'ρσ^%d'\nset arrow from -0.5, graph 0 to -0.5, graph 1 nohead lw 3\n"
+		        "set arrow from %g, graph 0 to %g, graph 1 nohead lw 3\nunset key\n"
+		        "plot 'profile.dat' u 1:2 w l lw 2\n", w->n, w->dim == 2 ? "disks" : "spheres",
+		        w->slit_width, w->radius, lattice, eta, w->dim,
+		        w->slit_width / (2 * w->radius) - 0.5, w->slit_width / (2 * w->radius) - 0.5);
+	else {
+		for (int k = 0; w->slit && k < 2; k++)  /* the walls, at y = 0 and H */
+			fprintf(f, "set arrow from graph 0, first %g to graph 1, first %g nohead lw 3\n",
+			        k * w->slit_width, k * w->slit_width);
+		fprintf(f, "set title \"%zu disks on the %s lattice, R = %g, η = %.3f\"\n"
+		        "set size ratio -1\nset xlabel 'x [lattice units]'\n"
+		        "set ylabel 'y [lattice units]'\nunset key\n"
+		        "plot 'config.dat' u 1:2:3 w circles fs transparent solid 0.4 lc rgb "
+		        "'#3060c0'\n", w->n, lattice, w->radius, eta);
+	}
+}
+
+/* walk.gp: g(r) or the profile when observed, otherwise the configuration (2D). */
 static int write_plot(const lz_walk *w, int observe, double eta, const lz_run *run)
 {
-	if (observe != OBSERVE_GR && w->dim != 2)
+	if (observe == OBSERVE_NONE && w->dim != 2)
 		return LZ_OK;
 	char path[4200];
 	int status = lz_rundir_file(run->dir, "walk.gp", path, sizeof path);
 	FILE *f = status == LZ_OK ? fopen(path, "w") : NULL;
 	if (!f)
 		return status != LZ_OK ? status : lz_error(LZ_EIO, "cannot write %s", path);
+	static const char *const what[] = {"the final disks", "g(r), raw and lattice-corrected",
+	                                   "the density profile across the slit"};
 	fprintf(f, "# lz run, method walk: %s.\n"
 	        "set terminal pngcairo size 800,700 enhanced font 'Sans,11'\n"
-	        "set output 'walk.png'\nset key below horizontal\n",
-	        observe == OBSERVE_GR ? "g(r), raw and lattice-corrected" : "the final disks");
-	if (observe == OBSERVE_GR)
-		fprintf(f, "set grid\nset title \"hard disks on the %s lattice, R = %g, η = %.3f\"\n"
-		        "set xlabel 'r / σ'\nset ylabel 'g(r)'\nset xrange [0:*]\n"
-		        "plot 'gr.dat' u 1:2 w l lw 1 lc rgb '#bbbbbb' t 'raw (exact shell area)', "
-		        "'' u 1:3 w lp pt 7 ps 0.5 lw 2 t 'corrected (lattice point count)', "
-		        "1 w l dt 2 lc rgb 'black' t 'ideal gas'\n",
-		        lz_lattice_name(w->box->kind), w->radius, eta);
-	else
-		fprintf(f, "set title \"%zu disks on the %s lattice, R = %g, η = %.3f\"\n"
-		        "set size ratio -1\nset xlabel 'x [lattice units]'\n"
-		        "set ylabel 'y [lattice units]'\nunset key\n"
-		        "plot 'config.dat' u 1:2:3 w circles fs transparent solid 0.4 lc rgb "
-		        "'#3060c0'\n", w->n, lz_lattice_name(w->box->kind), w->radius, eta);
+	        "set output 'walk.png'\nset key below horizontal\n", what[observe]);
+	plot_body(f, w, observe, eta);
 	if (fclose(f) != 0)
 		return lz_error(LZ_EIO, "cannot write %s", path);
 	status = lz_gnuplot(run->dir->tmp, "walk.gp");
@@ -232,82 +363,144 @@ static int sweeps(lz_walk *w, gsl_rng *rng, unsigned long long count, double *wa
 	return LZ_OK;
 }
 
-static int run(const lz_scene *s, lz_run *run)
+/* What a run holds: the walkers and at most one observer. */
+typedef struct {
+	lz_rng *rng;
+	lz_walk *w;
+	lz_gr *g;          /* observe = gr */
+	lz_profile *prof;  /* observe = profile */
+	double wall;       /* seconds in the measured sweeps */
+	uint64_t moves0, acc0;  /* the counters when the measurement began */
+} state;
+
+static void state_free(state *st)
+{
+	lz_profile_free(st->prof);
+	lz_gr_free(st->g);
+	lz_walk_free(st->w);
+	lz_rng_free(st->rng);
+}
+
+/* Walkers placed (in the slit, if any) and the observer the scene asks for. */
+static int setup(const lz_scene *s, state *st)
 {
 	lz_lattice_kind kind = scene_kind(s);
 	int64_t side = lz_scene_int(s, "size");
-	double radius = lz_scene_real(s, "radius");
 	size_t n = (size_t)scene_n(s);
+	lz_walk_motion motion = lz_scene_enum(s, "motion") == 1 ? LZ_WALK_BALLISTIC
+	                                                        : LZ_WALK_RANDOM;
+	st->rng = lz_rng_alloc(NULL, lz_scene_seed(s, "seed"));
+	if (!st->rng)
+		return LZ_ENOMEM;
+	st->w = lz_walk_alloc(kind, side, lz_scene_real(s, "radius"), n, motion);
+	if (!st->w)
+		return LZ_EINVAL;
+	int status = LZ_OK;
+	if (lz_scene_enum(s, "walls") == WALLS_SLIT)
+		status = lz_walk_set_slit(st->w, lz_scene_real(s, "slit_width"));
+	if (status == LZ_OK)
+		status = lz_walk_place(st->w, st->rng->gsl, 0);
+	if (status != LZ_OK)
+		return status;
 	int observe = lz_scene_enum(s, "observe");
+	if (observe == OBSERVE_GR) {
+		int max_r = (int)(side / 2), cap = st->w->dim == 2 ? LZ_GR_MAX_SHELLS_2D
+		                                                  : LZ_GR_MAX_SHELLS_3D;
+		st->g = lz_gr_alloc(kind, side, max_r < cap ? max_r : cap, n);
+		return st->g ? LZ_OK : LZ_ENOMEM;
+	}
+	if (observe == OBSERVE_PROFILE) {
+		st->prof = lz_profile_alloc(kind, side, st->w->lo, st->w->hi, n);
+		return st->prof ? LZ_OK : LZ_ENOMEM;
+	}
+	return LZ_OK;
+}
+
+/* Equilibration, then the measured sweeps with a sample every `sample` sweeps. */
+static int measure(const lz_scene *s, state *st, int quiet)
+{
 	unsigned long long steps = (unsigned long long)lz_scene_int(s, "steps");
 	unsigned long long equil = (unsigned long long)lz_scene_int(s, "equilibrate");
 	unsigned long long sample = (unsigned long long)lz_scene_int(s, "sample");
-	lz_walk_motion motion = lz_scene_enum(s, "motion") == 1 ? LZ_WALK_BALLISTIC
-	                                                        : LZ_WALK_RANDOM;
-	lz_rng *rng = lz_rng_alloc(NULL, lz_scene_seed(s, "seed"));
-	lz_walk *w = rng ? lz_walk_alloc(kind, side, radius, n, motion) : NULL;
-	lz_gr *g = NULL;
-	int status = w ? LZ_OK : rng ? LZ_EINVAL : LZ_ENOMEM;
-	if (status == LZ_OK)
-		status = lz_walk_place(w, rng->gsl, 0);
-	if (status == LZ_OK && observe == OBSERVE_GR) {
-		int max_r = (int)(side / 2), cap = w->dim == 2 ? LZ_GR_MAX_SHELLS_2D
-		                                              : LZ_GR_MAX_SHELLS_3D;
-		g = lz_gr_alloc(kind, side, max_r < cap ? max_r : cap, n);
-		if (!g)
-			status = LZ_ENOMEM;
+	int observing = st->g || st->prof, status = LZ_OK;
+	lz_progress p;
+	unsigned long long done = 0;
+	double equil_wall = 0;
+	if (!quiet)
+		lz_progress_begin(&p, "walk", (double)(equil + steps));
+	sweeps(st->w, st->rng->gsl, equil, &equil_wall, &p, &done, quiet);
+	st->moves0 = st->w->moves;
+	st->acc0 = st->w->accepted;
+	for (unsigned long long k = 0; k < steps && status == LZ_OK;) {
+		unsigned long long chunk = observing ? sample : steps;
+		if (chunk > steps - k)
+			chunk = steps - k;
+		sweeps(st->w, st->rng->gsl, chunk, &st->wall, &p, &done, quiet);
+		k += chunk;
+		if (chunk == sample && st->g)
+			status = lz_gr_add_config(st->g, st->w->box, st->w->r);
+		else if (chunk == sample && st->prof)
+			status = lz_profile_add_config(st->prof, st->w->r);
 	}
-	double wall = 0, equil_wall = 0;
-	uint64_t moves0 = 0, acc0 = 0;
-	if (status == LZ_OK) {
-		lz_progress p;
-		unsigned long long done = 0;
-		if (!run->quiet)
-			lz_progress_begin(&p, "walk", (double)(equil + steps));
-		sweeps(w, rng->gsl, equil, &equil_wall, &p, &done, run->quiet);
-		moves0 = w->moves;
-		acc0 = w->accepted;
-		for (unsigned long long k = 0; k < steps && status == LZ_OK;) {
-			unsigned long long chunk = observe == OBSERVE_GR ? sample : steps;
-			if (chunk > steps - k)
-				chunk = steps - k;
-			sweeps(w, rng->gsl, chunk, &wall, &p, &done, run->quiet);
-			k += chunk;
-			if (g && chunk == sample)
-				status = lz_gr_add_config(g, w->box, w->r);
-		}
-		if (!run->quiet)
-			lz_progress_end(&p);
-	}
-	if (status == LZ_OK && lz_walk_overlaps(w) != 0)
+	if (!quiet)
+		lz_progress_end(&p);
+	if (status == LZ_OK && lz_walk_overlaps(st->w) != 0)
 		status = lz_error(LZ_EPHYS, "%zu overlapping pairs after the run: a move was accepted "
-		                  "that it should have rejected", lz_walk_overlaps(w));
-	double eta = lz_walk_packing(kind, side, radius, n);
-	if (status == LZ_OK) {
-		lz_json *j = run->summary;
-		uint64_t moves = w->moves - moves0, acc = w->accepted - acc0;
-		if (wall <= 0)
-			wall = 1e-9;
-		lz_json_int(j, "n_placed", (long long)n);
-		lz_json_num(j, "packing_fraction", eta);
-		lz_json_num(j, "acceptance", moves ? (double)acc / (double)moves : NAN);
-		lz_json_int(j, "steps_run", (long long)steps);
-		lz_json_num(j, "steps_per_s", (double)steps / wall);
-		lz_json_num(j, "atomsteps_per_s", (double)n * (double)steps / wall);
-		lz_json_int(j, "state_bytes_per_particle",
-		            (long long)(w->dim * sizeof(int32_t) + sizeof(int)));
-		if (g)
-			lz_json_int(j, "gr_samples", (long long)g->nsamples);
-	}
+		                  "that it should have rejected", lz_walk_overlaps(st->w));
+	return status;
+}
+
+/* N σ^dim per unit area (volume) of the box or of the slit: the reduced density. */
+static double reduced_density(const lz_walk *w)
+{
+	double L = (double)w->box->side, sigma = 2 * w->radius;
+	double volume = w->slit ? pow(L, w->dim - 1) * w->slit_width
+	                        : pow(L, w->dim) * lz_lattice_cell_volume(w->box->kind);
+	return (double)w->n * pow(sigma, w->dim) / volume;
+}
+
+static int summarise(const state *st, double eta, lz_json *j)
+{
+	const lz_walk *w = st->w;
+	uint64_t moves = w->moves - st->moves0, acc = w->accepted - st->acc0;
+	double wall = st->wall > 0 ? st->wall : 1e-9;
+	double steps = (double)(moves / w->n);
+	lz_json_int(j, "n_placed", (long long)w->n);
+	lz_json_num(j, "packing_fraction", eta);
+	lz_json_num(j, "reduced_density", reduced_density(w));
+	lz_json_num(j, "acceptance", moves ? (double)acc / (double)moves : NAN);
+	lz_json_int(j, "steps_run", (long long)steps);
+	lz_json_num(j, "steps_per_s", steps / wall);
+	lz_json_num(j, "atomsteps_per_s", (double)moves / wall);
+	lz_json_int(j, "state_bytes_per_particle",
+	            (long long)(w->dim * sizeof(int32_t) + sizeof(int)));
+	if (st->g)
+		lz_json_int(j, "gr_samples", (long long)st->g->nsamples);
+	if (st->prof && st->prof->nsamples > 0)
+		return profile_summary(w, st->prof, j);
+	return LZ_OK;
+}
+
+static int run(const lz_scene *s, lz_run *run)
+{
+	state st = {0};
+	int status = setup(s, &st);
 	if (status == LZ_OK)
-		status = write_config(w, run);
-	if (status == LZ_OK && g && g->nsamples > 0)
-		status = write_gr(g, 2 * radius, run);
+		status = measure(s, &st, run->quiet);
+	double eta = scene_packing(s, (long long)scene_n(s));
 	if (status == LZ_OK)
-		status = write_plot(w, g && g->nsamples > 0 ? OBSERVE_GR : OBSERVE_NONE, eta, run);
-	lz_gr_free(g);
-	lz_walk_free(w);
-	lz_rng_free(rng);
+		status = summarise(&st, eta, run->summary);
+	if (status == LZ_OK)
+		status = write_config(st.w, run);
+	if (status == LZ_OK && st.g && st.g->nsamples > 0)
+		status = write_gr(st.g, 2 * st.w->radius, run);
+	if (status == LZ_OK && st.prof && st.prof->nsamples > 0)
+		status = write_profile(st.w, st.prof, run);
+	int shown = st.g && st.g->nsamples > 0 ? OBSERVE_GR
+	            : st.prof && st.prof->nsamples > 0 ? OBSERVE_PROFILE : OBSERVE_NONE;
+	if (status == LZ_OK)
+		status = write_plot(st.w, shown, eta, run);
+	state_free(&st);
 	return status;
 }
 

@@ -23,14 +23,28 @@ double lz_walk_packing(lz_lattice_kind kind, int64_t side, double radius, size_t
 	return (double)n * (4.0 / 3.0) * M_PI * radius * radius * radius / (L * L * L * cell);
 }
 
+double lz_walk_row_spacing(lz_lattice_kind kind)
+{
+	if (lz_lattice_dim(kind) == 0)
+		return 0;
+	return kind == LZ_LATTICE_TRIANGULAR ? 0.86602540378443865 : 1.0;
+}
+
+double lz_walk_slit_packing(int dim, int64_t side, double width, double radius, size_t n)
+{
+	if ((dim != 2 && dim != 3) || side < 1 || !(width > 0))
+		return NAN;
+	double L = (double)side;
+	if (dim == 2)
+		return (double)n * M_PI * radius * radius / (L * width);
+	return (double)n * (4.0 / 3.0) * M_PI * radius * radius * radius / (L * L * width);
+}
+
 lz_walk *lz_walk_alloc(lz_lattice_kind kind, int64_t side, double radius, size_t n,
                        lz_walk_motion motion)
 {
-	int dim = lz_lattice_dim(kind);
+	int dim = lz_lattice_kind_side_check(kind, side);
 	if (dim == 0)
-		return lz_error(LZ_EINVAL, "lattice kind %d is not one of the %d kinds", (int)kind,
-		                LZ_NLATTICES), NULL;
-	if (lz_lattice_side_check(side) != LZ_OK)
 		return NULL;
 	if (side < 2)
 		return lz_error(LZ_EINVAL, "side = 1: a walker needs a box of side 2 or more"), NULL;
@@ -73,6 +87,8 @@ lz_walk *lz_walk_alloc(lz_lattice_kind kind, int64_t side, double radius, size_t
 	w->sigma2 = (int64_t)ceil(4.0 * radius * radius);
 	w->motion = motion;
 	w->dirs = lz_lattice_dirs(kind, &w->ndir);
+	w->lo = 0;
+	w->hi = (int32_t)(side - 1);
 	return w;
 }
 
@@ -86,6 +102,26 @@ void lz_walk_free(lz_walk *w)
 	free(w);
 }
 
+int lz_walk_set_slit(lz_walk *w, double width)
+{
+	double h = lz_walk_row_spacing(w->box->kind), R = w->radius;
+	double widest = (double)w->box->side * h;
+	if (!(width <= widest))
+		return lz_error(LZ_EINVAL, "slit width %g is wider than the box can hold: at most "
+		                "L·h = %g lattice units for side L = %d (row spacing h = %g); take a "
+		                "larger box", width, widest, (int)w->box->side, h);
+	double lo = ceil(R / h), hi = floor((width - R) / h);
+	if (!(lo <= hi))
+		return lz_error(LZ_EINVAL, "slit width %g leaves no row for a centre of radius %g "
+		                "between the walls: it must be at least %g (2R = %g, up to the "
+		                "first row of spacing %g that fits)", width, R, lo * h + R, 2 * R, h);
+	w->slit = 1;
+	w->slit_width = width;
+	w->lo = (int32_t)lo;
+	w->hi = (int32_t)hi;
+	return LZ_OK;
+}
+
 int lz_walk_set(lz_walk *w, size_t i, lz_site s, int d)
 {
 	if (i >= w->n)
@@ -93,11 +129,13 @@ int lz_walk_set(lz_walk *w, size_t i, lz_site s, int d)
 	if (d < 0 || d >= w->ndir)
 		return lz_error(LZ_EINVAL, "direction %d is not in [0, %d)", d, w->ndir);
 	uint32_t m = (uint32_t)w->box->mask;
-	int32_t *r = w->r + i * (size_t)w->dim;
-	r[0] = (int32_t)((uint32_t)s.x & m);
-	r[1] = (int32_t)((uint32_t)s.y & m);
-	if (w->dim == 3)
-		r[2] = (int32_t)((uint32_t)s.z & m);
+	int32_t site[3] = {(int32_t)((uint32_t)s.x & m), (int32_t)((uint32_t)s.y & m),
+	                   (int32_t)((uint32_t)s.z & m)};
+	if (!lz_walk_row_allowed(w, site[w->dim - 1]))
+		return lz_error(LZ_EINVAL, "site row %d is outside the slit's rows %d .. %d",
+		                (int)site[w->dim - 1], (int)w->lo, (int)w->hi);
+	for (int c = 0; c < w->dim; c++)
+		w->r[i * (size_t)w->dim + (size_t)c] = site[c];
 	w->dir[i] = d;
 	return LZ_OK;
 }
@@ -114,25 +152,35 @@ static int overlaps_any(const lz_walk *w, const int32_t *p, size_t upto)
 	return 0;
 }
 
+/* The packing fraction of the region the centres may use: the box, or the slit. */
+static double packing_of(const lz_walk *w)
+{
+	if (w->slit)
+		return lz_walk_slit_packing(w->dim, w->box->side, w->slit_width, w->radius, w->n);
+	return lz_walk_packing(w->box->kind, w->box->side, w->radius, w->n);
+}
+
 int lz_walk_place(lz_walk *w, gsl_rng *rng, unsigned long max_tries)
 {
 	if (max_tries == 0)
 		max_tries = 10000;
 	int dim = w->dim;
 	unsigned long L = (unsigned long)w->box->side;
+	unsigned long rows = (unsigned long)(w->hi - w->lo + 1);
 	for (size_t i = 0; i < w->n; i++) {
 		int32_t *p = w->r + i * (size_t)dim;
 		unsigned long t = 0;
 		do {
 			if (t++ == max_tries)
 				return lz_error(LZ_EPHYS, "could place only %zu of n = %zu disks of radius "
-				                "%g (packing %.4f asked) in %lu random tries for the next "
+				                "%g (packing %.4f asked%s) in %lu random tries for the next "
 				                "one: random placement jams near packing 0.547 in 2D "
 				                "(0.38 in 3D); ask for fewer or smaller particles", i, w->n,
-				                w->radius, lz_walk_packing(w->box->kind, w->box->side,
-				                w->radius, w->n), max_tries);
-			for (int c = 0; c < dim; c++)
+				                w->radius, packing_of(w), w->slit ? " in the slit" : "",
+				                max_tries);
+			for (int c = 0; c < dim - 1; c++)
 				p[c] = (int32_t)gsl_rng_uniform_int(rng, L);
+			p[dim - 1] = w->lo + (int32_t)gsl_rng_uniform_int(rng, rows);
 		} while (overlaps_any(w, p, i));
 		w->dir[i] = (int)gsl_rng_uniform_int(rng, (unsigned long)w->ndir);
 	}

@@ -5,11 +5,13 @@
 #include "lz/error.h"
 #include "lz/walk.h"
 
-/* All pairs: the new site against every other particle's current site. */
+/* The walls first (one comparison), then all pairs: the new site against every other
+ * particle's current site. */
 int lz_walk_try_move(lz_walk *w, size_t i, int d)
 {
 	/* Hint: the new site is r[i] + dirs[d], each coordinate wrapped with & mask (as
-	 * uint32_t, so that -1 becomes L - 1). Compare it with every particle j != i by
+	 * uint32_t, so that -1 becomes L - 1). A slit's walls forbid it when its last
+	 * coordinate fails lz_walk_row_allowed (reject before any pair). Compare it with every particle j != i by
 	 * lz_lattice_min_dist2(w->box, dx, dy, dz): below w->sigma2 is an overlap and the
 	 * move is rejected. Touching (d2 == sigma2) is allowed. Count the offer in
 	 * w->moves, an acceptance in w->accepted. See the walkers section of
@@ -23,6 +25,8 @@ int lz_walk_try_move(lz_walk *w, size_t i, int d)
 	int32_t ny = (int32_t)((uint32_t)(p[1] + s.y) & m);
 	int32_t nz = dim == 3 ? (int32_t)((uint32_t)(p[2] + s.z) & m) : 0;
 	w->moves++;
+	if (!lz_walk_row_allowed(w, dim == 3 ? nz : ny))
+		return 0;
 	for (size_t j = 0; j < w->n; j++) {
 		if (j == i)
 			continue;

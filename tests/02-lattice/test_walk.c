@@ -3,6 +3,7 @@
  * every move with uniform direction statistics (detailed balance of the random
  * walk), hand-worked touching pairs on each lattice, ballistic flight, the periodic
  * boundary, and a jammed lattice that rejects everything. */
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -392,6 +393,118 @@ LZ_TEST(walk_jammed_lattice_rejects_everything)
 			              (unsigned long long)w->accepted);
 			lz_walk_free(w);
 		}
+	gsl_rng_free(rng);
+}
+END_TEST
+
+/* A slit on every lattice: walls reject the steps that would leave rows lo .. hi —
+ * including the sheared triangular step (1, -1) — and count them as offered moves. */
+LZ_TEST(walk_slit_walls_reject_steps_out)
+{
+	static const lz_lattice_kind kinds[] = {LZ_LATTICE_SQUARE, LZ_LATTICE_SQUARE8,
+	                                        LZ_LATTICE_TRIANGULAR, LZ_LATTICE_CUBIC,
+	                                        LZ_LATTICE_CUBIC26};
+	for (int k = 0; k < 5; k++) {
+		lz_walk *w = make(kinds[k], 32, 2, 1, LZ_WALK_RANDOM);
+		ck_assert(lz_walk_set_slit(w, 12) == LZ_OK);
+		int last = w->dim - 1;
+		for (int side = 0; side < 2; side++) {
+			int32_t row = side ? w->hi : w->lo;
+			for (int d = 0; d < w->ndir; d++) {
+				int32_t at[3] = {5, 5, 5};
+				at[last] = row;
+				put(w, 0, at[0], at[1], at[2], 0);
+				int32_t step = last == 1 ? w->dirs[d].y : w->dirs[d].z;
+				int out = side ? step > 0 : step < 0;
+				uint64_t moves = w->moves, acc = w->accepted;
+				int moved = lz_walk_try_move(w, 0, d);
+				ck_assert_msg(moved == !out, "%s, slit rows %d .. %d: a lone disk in row %d "
+				              "offered step (%d,%d,%d) %s — a step %s", lz_lattice_name(kinds[k]),
+				              w->lo, w->hi, row, w->dirs[d].x, w->dirs[d].y, w->dirs[d].z,
+				              moved ? "moved" : "stayed", out ? "through the wall must be "
+				              "rejected (lz_walk_row_allowed)" : "along or away from the wall "
+				              "is free");
+				ck_assert_msg(w->moves == moves + 1 && w->accepted == acc + (uint64_t)moved,
+				              "%s: a move stopped by a wall still counts as offered",
+				              lz_lattice_name(kinds[k]));
+			}
+		}
+		lz_walk_free(w);
+	}
+}
+END_TEST
+
+/* Dense disks in slits, walk and ballistic, 2D and 3D: no centre ever leaves the
+ * allowed rows, no pair overlaps, and the walls are not periodic. */
+LZ_TEST(walk_slit_dense_run_stays_inside)
+{
+	static const lz_lattice_kind kinds[] = {LZ_LATTICE_SQUARE8, LZ_LATTICE_TRIANGULAR,
+	                                        LZ_LATTICE_CUBIC};
+	/* Packing about 0.35 of a 64 × 12 strip, 0.23 of a 32 × 32 × 9 slab. */
+	static const int64_t sides[] = {64, 64, 32};
+	static const size_t ns[] = {38, 38, 150};
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	gsl_rng_set(rng, 77);
+	for (int k = 0; k < 3; k++)
+		for (int m = 0; m < 2; m++) {
+			lz_walk *w = make(kinds[k], sides[k], 1.5, ns[k],
+			                  m ? LZ_WALK_BALLISTIC : LZ_WALK_RANDOM);
+			ck_assert(lz_walk_set_slit(w, k == 2 ? 9 : 12) == LZ_OK);
+			ck_assert_msg(lz_walk_place(w, rng, 0) == LZ_OK, "%s", lz_error_message());
+			uint64_t seen_lo = 0, seen_hi = 0;
+			for (int s = 1; s <= 300; s++) {
+				lz_walk_sweep(w, rng);
+				for (size_t i = 0; i < w->n; i++) {
+					int32_t row = w->r[i * (size_t)w->dim + (size_t)w->dim - 1];
+					ck_assert_msg(lz_walk_row_allowed(w, row), "%s, %s, sweep %d: particle %zu "
+					              "is in row %d, outside the slit's rows %d .. %d",
+					              lz_lattice_name(kinds[k]), m ? "ballistic" : "walk", s, i,
+					              row, w->lo, w->hi);
+					seen_lo += row == w->lo;
+					seen_hi += row == w->hi;
+				}
+				if (s % 50 == 0)
+					check_no_overlap(w, s);
+			}
+			ck_assert_msg(seen_lo > 0 && seen_hi > 0, "%s: no particle ever reached a wall row "
+			              "in 300 sweeps", lz_lattice_name(kinds[k]));
+			lz_walk_free(w);
+		}
+	gsl_rng_free(rng);
+}
+END_TEST
+
+/* Detailed balance at a wall: a lone random walker between walls visits every row
+ * equally often. A rule that retries another direction after hitting the wall (or
+ * bounces) starves or crowds the wall rows. */
+LZ_TEST(walk_slit_lone_walker_profile_is_flat)
+{
+	static const lz_lattice_kind kinds[] = {LZ_LATTICE_SQUARE, LZ_LATTICE_TRIANGULAR};
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	gsl_rng_set(rng, 3);
+	for (int k = 0; k < 2; k++) {
+		lz_walk *w = make(kinds[k], 16, 1, 1, LZ_WALK_RANDOM);
+		ck_assert(lz_walk_set_slit(w, 7.5) == LZ_OK);
+		ck_assert(lz_walk_place(w, rng, 0) == LZ_OK);
+		int rows = w->hi - w->lo + 1;
+		uint64_t count[16] = {0};
+		const long sweeps = 400000;
+		for (long s = 0; s < sweeps; s++) {
+			lz_walk_sweep(w, rng);
+			count[w->r[1] - w->lo]++;
+		}
+		/* About rows² = 36 sweeps between independent rows: ~1e4 independent samples,
+		 * so each row's share is known to about 3 %; 12 % is 4 of those. A retry rule
+		 * shifts the wall rows by 25 % or more. */
+		for (int c = 0; c < rows; c++) {
+			double share = (double)count[c] * rows / (double)sweeps;
+			ck_assert_msg(fabs(share - 1) < 0.12, "%s, slit rows %d .. %d: row %d is visited "
+			              "%.3f times its fair share by a lone random walker — a move out "
+			              "through a wall must simply be rejected, the walker staying where "
+			              "it is", lz_lattice_name(kinds[k]), w->lo, w->hi, w->lo + c, share);
+		}
+		lz_walk_free(w);
+	}
 	gsl_rng_free(rng);
 }
 END_TEST

@@ -9,6 +9,7 @@
 #include "lz/lattice.h"
 #include "lz/method.h"
 #include "lz/scene.h"
+#include "lz/profile.h"
 #include "lz/walk.h"
 #include "lztest.h"
 
@@ -79,5 +80,71 @@ LZ_TEST(walk_scene_checks)
 	ck_assert(bind_walk("n=1;observe=gr") == LZ_EINVAL);
 	ck_assert(bind_walk("n=10;lattice=hexagonal") == LZ_EINVAL);
 	ck_assert(bind_walk("n=10;motion=levy") == LZ_EINVAL);
+	/* Slits: the walls need their width and refuse g(r); packing is of the slit. */
+	ck_assert_msg(bind_walk("packing=0.4;walls=slit;slit_width=20;observe=profile") == LZ_OK,
+	              "a slit scene: %s", lz_error_message());
+	ck_assert_msg(bind_walk("lattice=cubic26;size=32;radius=2;packing=0.2;walls=slit;"
+	                        "slit_width=20") == LZ_OK, "a 3D slit: %s", lz_error_message());
+	ck_assert(bind_walk("n=10;walls=slit") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "needs slit_width"));
+	ck_assert(bind_walk("n=10;slit_width=20") == LZ_EINVAL);
+	ck_assert(bind_walk("n=10;walls=slit;slit_width=5") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "at least 6"));
+	ck_assert(bind_walk("n=10;walls=slit;slit_width=100") == LZ_EINVAL);
+	ck_assert(bind_walk("n=10;walls=slit;slit_width=20;observe=gr") == LZ_EINVAL);
+	/* 30 disks of R = 3 fill 0.21 of the 64² box but 0.66 of a slit 20 wide. */
+	ck_assert(bind_walk("n=30;walls=slit;slit_width=20") == LZ_OK);
+	ck_assert(bind_walk("n=45;walls=slit;slit_width=20") == LZ_EINVAL);
+	ck_assert(strstr(lz_error_message(), "slit"));
+}
+END_TEST
+
+LZ_TEST(walk_slit_rows_and_bad_widths)
+{
+	/* Square, R = 3, walls 20 apart: centres at heights 3 .. 17. */
+	lz_walk *w = lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 3, 10, LZ_WALK_RANDOM);
+	ck_assert(w && w->lo == 0 && w->hi == 63);
+	ck_assert(lz_walk_set_slit(w, 20) == LZ_OK && w->lo == 3 && w->hi == 17 && w->slit);
+	/* Rows 3 .. 17 of the square lattice, one lattice unit each. */
+	ck_assert(fabs(lz_walk_slit_packing(2, 64, 20, 3, 10) - 90 * M_PI / 1280) < 1e-15);
+	ck_assert(lz_walk_set_slit(w, 5.5) == LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), "5.5") && strstr(lz_error_message(), "at least 6"),
+	              "too narrow a slit should say the smallest width: %s", lz_error_message());
+	ck_assert(lz_walk_set_slit(w, 65) == LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), "at most"), "%s", lz_error_message());
+	ck_assert(lz_walk_set_slit(w, 7) == LZ_OK && w->lo == 3 && w->hi == 4);
+	/* lz_walk_set refuses a row the walls forbid. */
+	ck_assert(lz_walk_set(w, 0, (lz_site){1, 2, 0}, 0) == LZ_EINVAL);
+	ck_assert(lz_walk_set(w, 0, (lz_site){1, 4, 0}, 0) == LZ_OK);
+	lz_walk_free(w);
+	/* Triangular rows are √3/2 apart: R = 3 needs row 4 (3.46); H = 20 ends at row 19
+	 * (16.45 <= 17). */
+	w = lz_walk_alloc(LZ_LATTICE_TRIANGULAR, 64, 3, 10, LZ_WALK_RANDOM);
+	ck_assert(lz_walk_set_slit(w, 20) == LZ_OK && w->lo == 4 && w->hi == 19);
+	lz_walk_free(w);
+	/* Cubic: the walls cross z. */
+	w = lz_walk_alloc(LZ_LATTICE_CUBIC, 16, 1, 10, LZ_WALK_RANDOM);
+	ck_assert(lz_walk_set_slit(w, 5) == LZ_OK && w->lo == 1 && w->hi == 4);
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	ck_assert(lz_walk_place(w, rng, 0) == LZ_OK);
+	for (size_t i = 0; i < w->n; i++)
+		ck_assert_msg(w->r[3 * i + 2] >= 1 && w->r[3 * i + 2] <= 4, "placed in row %d, "
+		              "outside the slit", w->r[3 * i + 2]);
+	gsl_rng_free(rng);
+	lz_walk_free(w);
+}
+END_TEST
+
+LZ_TEST(profile_alloc_rejects_bad_input)
+{
+	ck_assert(lz_profile_alloc(LZ_LATTICE_SQUARE, 48, 0, 10, 5) == NULL);
+	ck_assert(lz_profile_alloc(LZ_LATTICE_SQUARE, 64, 10, 9, 5) == NULL);
+	ck_assert_msg(strstr(lz_error_message(), "10 .. 9"), "%s", lz_error_message());
+	ck_assert(lz_profile_alloc(LZ_LATTICE_SQUARE, 64, 0, 64, 5) == NULL);
+	ck_assert(lz_profile_alloc(LZ_LATTICE_SQUARE, 64, -1, 3, 5) == NULL);
+	ck_assert(lz_profile_alloc(LZ_LATTICE_SQUARE, 64, 0, 3, 0) == NULL);
+	lz_profile *p = lz_profile_alloc(LZ_LATTICE_TRIANGULAR, 64, 0, 63, 5);
+	ck_assert(p && fabs(p->row_volume - 32 * sqrt(3)) < 1e-12);
+	lz_profile_free(p);
 }
 END_TEST

@@ -64,6 +64,11 @@ const lz_site *lz_lattice_dirs(lz_lattice_kind kind, int *n);
  * with an lz_error naming the value and the nearest allowed sizes. O(1). */
 int lz_lattice_side_check(int64_t side);
 
+/* The dimension (2 or 3) of lattice `kind` when side also passes
+ * lz_lattice_side_check; otherwise 0 with an lz_error naming the bad value. The one
+ * check every allocator of a box-sized object starts with. O(1). */
+int lz_lattice_kind_side_check(lz_lattice_kind kind, int64_t side);
+
 /* A periodic box with its distance-correction table. Invariant: side = mask + 1 is a
  * power of two, dc has side entries, and dc[u] is the minimum-image representative
  * of u (lz_lattice_dctable). */

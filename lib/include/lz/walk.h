@@ -18,6 +18,14 @@
  *     η = N · (area of one disk) / (area of the box) = N π R² / (L² · cell)
  * (4/3 π R³ / L³ in 3D), cell the area per site (lz_lattice_cell_volume).
  *
+ * A slit (thesis 2.5.3, lz_walk_set_slit) makes the last coordinate (y in 2D, z in
+ * 3D) non-periodic: two hard walls perpendicular to it stand at Cartesian heights 0
+ * and H, and a centre must keep the distance R from both. The rows (values of the
+ * last coordinate) a centre may take are then lo .. hi,
+ *     lo = ceil(R / h),   hi = floor((H - R) / h),
+ * h the Cartesian spacing of the rows: 1, or √3/2 on the triangular lattice. A move
+ * to a row outside lo .. hi is rejected like an overlap (lz_walk_row_allowed).
+ *
  * Cost: all pairs — O(N) per move, O(N²) per sweep (cell lists come in stage 04).
  */
 #ifndef LZ_WALK_H
@@ -47,7 +55,21 @@ typedef struct {
 	int32_t *r;            /* positions, n·dim */
 	int *dir;              /* the current direction of each particle */
 	uint64_t moves, accepted;  /* offered and accepted moves, for the acceptance */
+	int slit;              /* 1 after lz_walk_set_slit: walls across the last axis */
+	double slit_width;     /* H, Cartesian lattice units (0 without a slit) */
+	int32_t lo, hi;        /* the rows a centre may take: 0 .. L-1 without a slit */
 } lz_walk;
+
+/* The Cartesian spacing h of the rows of the last coordinate: √3/2 on the triangular
+ * lattice, 1 on the others (0 for an invalid kind). O(1). */
+double lz_walk_row_spacing(lz_lattice_kind kind);
+
+/* 1 if a centre may sit in row `row` of the last coordinate (always, without a slit),
+ * 0 if a wall forbids it. O(1). */
+static inline int lz_walk_row_allowed(const lz_walk *w, int32_t row)
+{
+	return row >= w->lo && row <= w->hi;
+}
 
 /* The packing fraction of n disks (spheres) of radius R in a box of side L on
  * lattice `kind`, in lattice units with the cell area (header comment). O(1). */
@@ -64,12 +86,23 @@ lz_walk *lz_walk_alloc(lz_lattice_kind kind, int64_t side, double radius, size_t
                        lz_walk_motion motion);
 void lz_walk_free(lz_walk *w);
 
+/* Put walls at Cartesian heights 0 and H = width across the last axis (header
+ * comment); call it before lz_walk_place. LZ_EINVAL with a message giving the allowed
+ * range when no row is left for a centre (H < 2R + h, roughly) or when H > L·h: the
+ * box must hold the slit, and then no periodic image across the walls comes within
+ * σ of a particle. O(1). */
+int lz_walk_set_slit(lz_walk *w, double width);
+
+/* The packing fraction of n disks (spheres) of radius R in a slit of width H across a
+ * box of side L: n · (area of one disk) / (L · H), or n · (volume) / (L² · H). O(1). */
+double lz_walk_slit_packing(int dim, int64_t side, double width, double radius, size_t n);
+
 /* Put particle i at site s (wrapped into the box) with direction d, without any
- * overlap check (for tests and hand-made starts). LZ_EINVAL if i >= n or d is not a
- * direction. O(1). */
+ * overlap check (for tests and hand-made starts). LZ_EINVAL if i >= n, d is not a
+ * direction, or the wrapped site is in a row the slit forbids. O(1). */
 int lz_walk_set(lz_walk *w, size_t i, lz_site s, int d);
 
-/* Place all n particles at random sites, one after the other, each drawn again until
+/* Place all n particles at random sites (inside the slit, if any), one after the other, each drawn again until
  * it overlaps none of those already placed (random sequential placement), and give
  * each a random direction. LZ_EPHYS with a message naming n, R and the packing if
  * some particle found no room in max_tries draws (0: 10000): random placement jams
@@ -82,8 +115,9 @@ size_t lz_walk_overlaps(const lz_walk *w);
 /* ---- graded (solutions/02-lattice/walk.c) ---- */
 
 /* Offer particle i the move by direction d (an index into w->dirs): the new site,
- * wrapped by the mask, is accepted when its minimum-image distance² to every OTHER
- * particle is at least w->sigma2; then r[i] moves there. Returns 1 (moved) or 0
+ * wrapped by the mask, is accepted when its last coordinate is a row the walls allow
+ * (lz_walk_row_allowed) and its minimum-image distance² to every OTHER particle is at
+ * least w->sigma2; then r[i] moves there. Returns 1 (moved) or 0
  * (rejected, r unchanged). Counts the move in w->moves and w->accepted. Does not
  * touch w->dir. Preconditions: i < n, 0 <= d < ndir. O(n). */
 int lz_walk_try_move(lz_walk *w, size_t i, int d);
