@@ -2,8 +2,8 @@
  * moved by random walk or ballistically with rejection of overlapping moves
  * (lz/walk.h, thesis 2.2 and 2.4.1).
  *
- * A run places the particles at random (random sequential placement; inside the slit
- * with walls = slit), runs `equilibrate` sweeps, then `steps` measured sweeps; every
+ * A run places the particles at random (random sequential placement, or a random
+ * subset of a grid with start = grid; inside the slit with walls = slit), runs `equilibrate` sweeps, then `steps` measured sweeps; every
  * `sample`-th configuration goes to a g(r) accumulator (observe = gr, lz/gr.h, σ =
  * 2R; gr.dat) or to a density profile across the slit (observe = profile,
  * lz/profile.h; profile.dat). It always writes the final configuration (config.dat) and summarises the
@@ -47,6 +47,9 @@ static const lz_key keys[] = {
 	 "with walls = slit; n is rounded from it"},
 	{"motion", LZ_KEY_ENUM, "walk", 0, 0, 0, 0, "walk|ballistic", NULL,
 	 "walk: a new random direction every step; ballistic: keep it until a collision"},
+	{"start", LZ_KEY_ENUM, "random", 0, 0, 0, 0, "random|grid", NULL,
+	 "random: random sequential placement (jams near η = 0.55); grid: a random subset of "
+	 "a grid of spacing ceil(2R), for denser or narrow systems (equilibrate it)"},
 	{"steps", LZ_KEY_INT, "1000", 1, 1e12, 0, 0, NULL, "sweeps",
 	 "measured ensemble steps (one move offered to every particle each)"},
 	{"equilibrate", LZ_KEY_INT, "0", 0, 1e12, 0, 0, NULL, "sweeps",
@@ -399,7 +402,8 @@ static int setup(const lz_scene *s, state *st)
 	if (lz_scene_enum(s, "walls") == WALLS_SLIT)
 		status = lz_walk_set_slit(st->w, lz_scene_real(s, "slit_width"));
 	if (status == LZ_OK)
-		status = lz_walk_place(st->w, st->rng->gsl, 0);
+		status = lz_scene_enum(s, "start") == 1 ? lz_walk_place_grid(st->w, st->rng->gsl)
+		                                        : lz_walk_place(st->w, st->rng->gsl, 0);
 	if (status != LZ_OK)
 		return status;
 	int observe = lz_scene_enum(s, "observe");

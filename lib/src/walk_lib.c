@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_randist.h>
+
 #include "lz/bits.h"
 #include "lz/error.h"
 #include "lz/walk.h"
@@ -184,6 +186,41 @@ int lz_walk_place(lz_walk *w, gsl_rng *rng, unsigned long max_tries)
 		} while (overlaps_any(w, p, i));
 		w->dir[i] = (int)gsl_rng_uniform_int(rng, (unsigned long)w->ndir);
 	}
+	return LZ_OK;
+}
+
+int lz_walk_place_grid(lz_walk *w, gsl_rng *rng)
+{
+	int dim = w->dim;
+	int32_t step = (int32_t)ceil(2 * w->radius), L = w->box->side;
+	/* Along a periodic axis m·step <= L keeps the wrap-around gap >= step too. */
+	size_t across = (size_t)(L / step);
+	size_t rows = w->slit ? (size_t)((w->hi - w->lo) / step) + 1 : across;
+	size_t cap = rows * across * (dim == 3 ? across : 1);
+	if (w->n > cap)
+		return lz_error(LZ_EPHYS, "a grid of spacing %d holds %zu disks of radius %g here, "
+		                "fewer than n = %zu", (int)step, cap, w->radius, w->n);
+	size_t *all = malloc(cap * sizeof *all), *pick = malloc(w->n * sizeof *pick);
+	if (!all || !pick) {
+		free(all);
+		free(pick);
+		return lz_error(LZ_ENOMEM, "no memory for a grid of %zu points", cap);
+	}
+	for (size_t k = 0; k < cap; k++)
+		all[k] = k;
+	gsl_ran_choose(rng, pick, w->n, all, cap, sizeof *all);  /* sorted: shuffle below */
+	gsl_ran_shuffle(rng, pick, w->n, sizeof *pick);
+	for (size_t i = 0; i < w->n; i++) {
+		int32_t *p = w->r + i * (size_t)dim;
+		size_t k = pick[i];
+		p[dim - 1] = w->lo + (int32_t)(k % rows) * step;
+		k /= rows;
+		for (int c = 0; c < dim - 1; c++, k /= across)
+			p[c] = (int32_t)(k % across) * step;
+		w->dir[i] = (int)gsl_rng_uniform_int(rng, (unsigned long)w->ndir);
+	}
+	free(all);
+	free(pick);
 	return LZ_OK;
 }
 

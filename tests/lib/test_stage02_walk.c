@@ -148,3 +148,36 @@ LZ_TEST(profile_alloc_rejects_bad_input)
 	lz_profile_free(p);
 }
 END_TEST
+
+LZ_TEST(walk_grid_start_has_no_overlap)
+{
+	/* Boxes whose side is no multiple of the spacing (the periodic gap), slits, 3D. */
+	static const struct { lz_lattice_kind kind; int L; double R, H; size_t n; } cases[] = {
+		{LZ_LATTICE_SQUARE, 16, 2.5, 0, 9},       /* spacing 5: 3 × 3 */
+		{LZ_LATTICE_TRIANGULAR, 64, 2.2, 0, 144}, /* spacing 5: 12 × 12 */
+		{LZ_LATTICE_SQUARE, 256, 6, 18, 21},      /* one row in a slit 1.5 σ wide */
+		{LZ_LATTICE_TRIANGULAR, 128, 3, 40, 90},
+		{LZ_LATTICE_CUBIC, 32, 1.5, 20, 300},
+	};
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+		lz_walk *w = lz_walk_alloc(cases[k].kind, cases[k].L, cases[k].R, cases[k].n,
+		                           LZ_WALK_RANDOM);
+		ck_assert(w != NULL);
+		if (cases[k].H > 0)
+			ck_assert(lz_walk_set_slit(w, cases[k].H) == LZ_OK);
+		ck_assert_msg(lz_walk_place_grid(w, rng) == LZ_OK, "case %zu: %s", k,
+		              lz_error_message());
+		ck_assert_msg(lz_walk_overlaps(w) == 0, "case %zu: the grid start overlaps", k);
+		for (size_t i = 0; i < w->n; i++)
+			ck_assert(lz_walk_row_allowed(w, w->r[i * (size_t)w->dim + (size_t)w->dim - 1]));
+		lz_walk_free(w);
+	}
+	/* One more disk than the 3 × 3 grid holds. */
+	lz_walk *w = lz_walk_alloc(LZ_LATTICE_SQUARE, 16, 2.5, 10, LZ_WALK_RANDOM);
+	ck_assert(lz_walk_place_grid(w, rng) == LZ_EPHYS);
+	ck_assert_msg(strstr(lz_error_message(), "holds 9"), "%s", lz_error_message());
+	lz_walk_free(w);
+	gsl_rng_free(rng);
+}
+END_TEST

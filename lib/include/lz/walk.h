@@ -109,6 +109,13 @@ int lz_walk_set(lz_walk *w, size_t i, lz_site s, int d);
  * near η ≈ 0.547 in 2D (0.38 in 3D), below close packing. O(n² · tries). */
 int lz_walk_place(lz_walk *w, gsl_rng *rng, unsigned long max_tries);
 
+/* Place all n particles on a random choice of the points of a grid of spacing
+ * s = ceil(2R) lattice units along every axis (starting at row lo in a slit), which
+ * no two disks can overlap on, with random directions: a start for densities where
+ * random placement jams (narrow slits, η > 0.5); melt it by equilibration sweeps.
+ * LZ_EPHYS with a message giving the grid's capacity when n exceeds it. O(grid). */
+int lz_walk_place_grid(lz_walk *w, gsl_rng *rng);
+
 /* The number of overlapping pairs (0 for a valid configuration). O(n²). */
 size_t lz_walk_overlaps(const lz_walk *w);
 
