@@ -110,16 +110,24 @@ int lz_lgas_init_uniform(lz_lgas *g, double d, gsl_rng *rng)
 	return LZ_OK;
 }
 
-int lz_lgas_init_shear(lz_lgas *g, double d, double u0, gsl_rng *rng)
+/* The linearised equilibrium d (1 + 2 c_k·u) is a probability for every direction
+ * only when |u| <= 1/2 and d (1 + 2 |u|) < 1. */
+static int check_velocity(const char *what, double d, double u0)
 {
 	if (check_density(d) != LZ_OK)
 		return LZ_EINVAL;
-	if (!(d * (1.0 + 2.0 * fabs(u0)) < 1.0))
-		return lz_error(LZ_EINVAL, "shear-wave amplitude u0 = %g at density %g: the "
-		                "linearised equilibrium d (1 + 2 c·u) = %g must stay below 1; take "
-		                "|u0| < %g", u0, d, d * (1.0 + 2.0 * fabs(u0)), (1.0 / d - 1.0) / 2.0);
+	if (!(fabs(u0) <= 0.5 && d * (1.0 + 2.0 * fabs(u0)) < 1.0))
+		return lz_error(LZ_EINVAL, "%s u0 = %g at density %g: the linearised equilibrium "
+		                "d (1 + 2 c·u) must stay in [0, 1) for every direction; take |u0| <= "
+		                "1/2 and |u0| < (1/d - 1)/2 = %g", what, u0, d, (1.0 / d - 1.0) / 2.0);
+	return LZ_OK;
+}
+
+/* Fill every row y with the linearised equilibrium of the flow (u(y), 0). */
+static void fill_flow(lz_lgas *g, double d, double u0, int wave, gsl_rng *rng)
+{
 	for (int32_t y = 0; y < g->side; y++) {
-		double u = u0 * sin(2.0 * M_PI * y / g->side), p[6];
+		double u = wave ? u0 * sin(2.0 * M_PI * y / g->side) : u0, p[6];
 		for (int k = 0; k < g->nbits; k++) {
 			double cx, cy;
 			unit_dir(g, k, &cx, &cy);
@@ -128,6 +136,21 @@ int lz_lgas_init_shear(lz_lgas *g, double d, double u0, gsl_rng *rng)
 		for (int32_t x = 0; x < g->side; x++)
 			fill_site(g, lz_lgas_index(g, x, y), p, rng);
 	}
+}
+
+int lz_lgas_init_shear(lz_lgas *g, double d, double u0, gsl_rng *rng)
+{
+	if (check_velocity("shear-wave amplitude", d, u0) != LZ_OK)
+		return LZ_EINVAL;
+	fill_flow(g, d, u0, 1, rng);
+	return LZ_OK;
+}
+
+int lz_lgas_init_flow(lz_lgas *g, double d, double u0, gsl_rng *rng)
+{
+	if (check_velocity("flow speed", d, u0) != LZ_OK)
+		return LZ_EINVAL;
+	fill_flow(g, d, u0, 0, rng);
 	return LZ_OK;
 }
 
@@ -157,6 +180,70 @@ int lz_lgas_init_pulse(lz_lgas *g, double d, double a, gsl_rng *rng)
 void lz_lgas_set_wall(lz_lgas *g, int32_t x, int32_t y)
 {
 	g->site[lz_lgas_index(g, x, y)] |= LZ_LGAS_WALL;
+}
+
+void lz_lgas_position(const lz_lgas *g, int32_t x, int32_t y, double *X, double *Y)
+{
+	x &= g->mask;
+	y &= g->mask;
+	if (g->model != LZ_LGAS_FHP) {
+		*X = x;
+		*Y = y;
+		return;
+	}
+	/* 2X is an integer: wrap it into [0, 2L) exactly. */
+	int64_t twice = (2 * (int64_t)x + y - g->side / 2) % (2 * (int64_t)g->side);
+	*X = 0.5 * (double)(twice < 0 ? twice + 2 * (int64_t)g->side : twice);
+	*Y = y * (sqrt(3.0) / 2.0);
+}
+
+/* Mark a wall; 1 if the site was not one yet (on a tiny lattice the disk's box wraps
+ * onto itself). */
+static int mark_wall(lz_lgas *g, int32_t x, int32_t y)
+{
+	int fresh = !(g->site[lz_lgas_index(g, x, y)] & LZ_LGAS_WALL);
+	lz_lgas_set_wall(g, x, y);
+	return fresh;
+}
+
+int64_t lz_lgas_add_obstacle(lz_lgas *g, lz_lgas_obstacle kind, int64_t size)
+{
+	if (kind == LZ_LGAS_NO_OBSTACLE)
+		return 0;
+	if (kind != LZ_LGAS_PLATE && kind != LZ_LGAS_DISK)
+		return lz_error(LZ_EINVAL, "obstacle kind %d is not a plate (1) or a disk (2)",
+		                (int)kind), -1;
+	int64_t max = lz_lgas_obstacle_max(g->side);
+	if (size < 1 || size > max)
+		return lz_error(LZ_EINVAL, "obstacle size = %lld sites is outside [1, %lld]: at most "
+		                "half the side L = %d, so that the flow can pass", (long long)size,
+		                (long long)max, (int)g->side), -1;
+	int tri = g->model == LZ_LGAS_FHP;
+	int32_t L = g->side, mid = L / 2;
+	double X0 = L / 4.0, h = tri ? sqrt(3.0) / 2.0 : 1.0, shift;
+	int64_t marked = 0;
+	if (kind == LZ_LGAS_PLATE) {
+		/* Row y's sites sit at X = x + shift (mod L): take the one nearest X0. Rows
+		 * one apart differ by half a spacing in shift, so x steps by 0 or 1. */
+		for (int32_t y = mid - (int32_t)(size / 2); y < mid - (int32_t)(size / 2) + size; y++) {
+			shift = tri ? (y - mid) / 2.0 : 0.0;
+			marked += mark_wall(g, (int32_t)floor(X0 - shift + 0.5), y);
+		}
+		return marked;
+	}
+	double r = size / 2.0;
+	int32_t rows = (int32_t)ceil(r / h);
+	for (int32_t y = mid - rows; y <= mid + rows; y++) {
+		double dy = (y - mid) * h;
+		shift = tri ? (y - mid) / 2.0 : 0.0;
+		for (int32_t x = (int32_t)floor(X0 - shift - r) - 1; x <= (int32_t)ceil(X0 - shift + r) + 1;
+		     x++) {
+			double dx = x + shift - X0;
+			if (dx * dx + dy * dy <= r * r)
+				marked += mark_wall(g, x, y);
+		}
+	}
+	return marked;
 }
 
 void lz_lgas_totals(const lz_lgas *g, int64_t *mass, int64_t p[2])

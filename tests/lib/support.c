@@ -187,7 +187,7 @@ static int lzt_digits(lzt_reader *r)
 }
 
 /* The number grammar of RFC 8259: no '+', no leading zeros, no hex, no nan. */
-static int lzt_number(lzt_reader *r, lzt_member *m)
+static int parse_number(lzt_reader *r, lzt_member *m)
 {
 	const char *start = r->p;
 	if (*r->p == '-')
@@ -231,7 +231,7 @@ static int lzt_value(lzt_reader *r, lzt_member *m)
 			return 0;
 		}
 	if (*r->p == '-' || (*r->p >= '0' && *r->p <= '9'))
-		return lzt_number(r, m);
+		return parse_number(r, m);
 	return lzt_fail(r, "expected a flat value (string, number, true, false, null)");
 }
 
@@ -294,4 +294,21 @@ const lzt_member *lzt_json_get(const lzt_json *j, const char *key)
 		if (strcmp(j->m[i].key, key) == 0)
 			return &j->m[i];
 	return NULL;
+}
+
+lzt_json *lzt_summary(const char *run_dir)
+{
+	char err[128], *text = lzt_slurp(lzt_path(run_dir, "summary.json"), NULL);
+	ck_assert_msg(text != NULL, "no summary.json in %s", run_dir);
+	lzt_json *j = lzt_json_parse(text, err, sizeof err);
+	ck_assert_msg(j != NULL, "summary.json is not valid JSON (%s):\n%s", err, text);
+	free(text);
+	return j;
+}
+
+double lzt_num(const lzt_json *j, const char *key)
+{
+	const lzt_member *m = lzt_json_get(j, key);
+	ck_assert_msg(m && m->kind == LZT_NUM, "summary.json has no number '%s'", key);
+	return m->num;
 }

@@ -42,5 +42,9 @@ typedef struct {
  * (or has duplicate keys, or nested values). Free with free(). */
 lzt_json *lzt_json_parse(const char *text, char *err, size_t errsize);
 const lzt_member *lzt_json_get(const lzt_json *j, const char *key);
+/* RUN_DIR/summary.json parsed (fails the test if it is missing or not JSON). */
+lzt_json *lzt_summary(const char *run_dir);
+/* The number under key (fails the test if there is none). */
+double lzt_num(const lzt_json *j, const char *key);
 
 #endif

@@ -78,39 +78,22 @@ static const char *scene(const char *name, const char *text)
 	return path;
 }
 
-static lzt_json *summary(const char *run_dir)
-{
-	char err[128], *text = lzt_slurp(lzt_path(run_dir, "summary.json"), NULL);
-	ck_assert_msg(text != NULL, "no summary.json in %s", run_dir);
-	lzt_json *j = lzt_json_parse(text, err, sizeof err);
-	ck_assert_msg(j != NULL, "summary.json is not valid JSON (%s):\n%s", err, text);
-	free(text);
-	return j;
-}
-
-static double number(const lzt_json *j, const char *key)
-{
-	const lzt_member *m = lzt_json_get(j, key);
-	ck_assert_msg(m && m->kind == LZT_NUM, "summary.json has no number '%s'", key);
-	return m->num;
-}
-
 LZ_TEST(cli_runs_harmonic_scene)
 {
 	const char *path = scene("harmonic.scene", HARMONIC), *out = lzt_path(dir, "out");
 	int rc = lz("run", path, "--out", out, "--quiet", NULL);
 	ck_assert_msg(rc == 0, "lz run on a good harmonic scene exited %d: %s", rc, err_text);
-	lzt_json *j = summary(out);
+	lzt_json *j = lzt_summary(out);
 	const lzt_member *m = lzt_json_get(j, "method");
 	ck_assert_msg(m && m->kind == LZT_STR && strcmp(m->text, "verlet") == 0,
 	              "summary.json should start with method = verlet");
 	ck_assert_msg(strcmp(j->m[0].key, "method") == 0, "'method' is not the first key");
-	ck_assert_msg(number(j, "seed") == 7, "the seed written is %g, not the seed given (7)",
-	              number(j, "seed"));
-	double err = number(j, "energy_rel_err_max"), wall = number(j, "wall_s");
+	ck_assert_msg(lzt_num(j, "seed") == 7, "the seed written is %g, not the seed given (7)",
+	              lzt_num(j, "seed"));
+	double err = lzt_num(j, "energy_rel_err_max"), wall = lzt_num(j, "wall_s");
 	ck_assert_msg(err >= 0 && err < 1e-3, "energy_rel_err_max = %g for velocity Verlet at "
 	              "dt = 0.01 on the harmonic oscillator", err);
-	ck_assert_msg(wall >= 0 && number(j, "steps_per_s") > 0, "wall_s or steps_per_s not > 0");
+	ck_assert_msg(wall >= 0 && lzt_num(j, "steps_per_s") > 0, "wall_s or steps_per_s not > 0");
 	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a .partial directory is left");
 	ck_assert_msg(err_text[0] == '\0', "--quiet, yet stderr has '%s'", err_text);
 	free(j);
@@ -124,7 +107,7 @@ LZ_TEST(cli_same_seed_same_summary)
 	const char *a = lzt_path(dir, "a"), *b = lzt_path(dir, "b");
 	ck_assert(lz("run", path, "--out", a, "--quiet", "steps=2000", NULL) == 0);
 	ck_assert(lz("run", path, "--out", b, "--quiet", "steps=2000", NULL) == 0);
-	lzt_json *ja = summary(a), *jb = summary(b);
+	lzt_json *ja = lzt_summary(a), *jb = lzt_summary(b);
 	ck_assert_msg(ja->n == jb->n, "the two runs wrote %d and %d keys", ja->n, jb->n);
 	for (int i = 0; i < ja->n; i++) {
 		const char *key = ja->m[i].key;
@@ -137,7 +120,7 @@ LZ_TEST(cli_same_seed_same_summary)
 		              "'%s' differs between two runs with seed 7: %s vs %s — a run must "
 		              "be reproducible bit for bit", key, ja->m[i].text, jb->m[i].text);
 	}
-	ck_assert_msg(number(ja, "steps") == 2000, "the override steps=2000 was not applied");
+	ck_assert_msg(lzt_num(ja, "steps") == 2000, "the override steps=2000 was not applied");
 	free(ja);
 	free(jb);
 	cleanup();
@@ -152,10 +135,10 @@ LZ_TEST(cli_replaces_previous_run_and_logs_auto_seed)
 	ck_assert(lz("run", path, "--out", out, NULL) == 0);
 	ck_assert_msg(lz("run", path, "--out", out, NULL) == 0,
 	              "a second run into the same directory failed: %s", err_text);
-	lzt_json *j = summary(out);
+	lzt_json *j = lzt_summary(out);
 	char want[128];
 	snprintf(want, sizeof want, "lz: seed = %.0f (auto); pass seed=%.0f to repeat this run\n",
-	         number(j, "seed"), number(j, "seed"));
+	         lzt_num(j, "seed"), lzt_num(j, "seed"));
 	ck_assert_msg(strstr(err_text, want) != NULL, "stderr should log the seed used:\n"
 	              "  %s\ngot\n  %s", want, err_text);
 	ck_assert_msg(lzt_count_matching(lzt_path(dir, "runs"), "h.") == 0,

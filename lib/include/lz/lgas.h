@@ -74,16 +74,55 @@ int lz_lgas_init_uniform(lz_lgas *g, double d, gsl_rng *rng);
 
 /* A shear wave u_x(y) = u0 sin(2π y / L) along the rows, from the linearised
  * equilibrium N_k = d (1 + 2 c_k·u) with c_k the unit vector of direction k (k·60° or
- * k·90°). Needs d (1 + 2 |u0|) < 1. */
+ * k·90°). Needs |u0| <= 1/2 (no link probability below 0) and d (1 + 2 |u0|) < 1. */
 int lz_lgas_init_shear(lz_lgas *g, double d, double u0, gsl_rng *rng);
 
 /* A density pulse: d everywhere, d (1 + a) on the disk of radius L/8 (Euclidean,
  * lattice spacings) around the centre of the box. Needs d (1 + a) < 1, a > -1. */
 int lz_lgas_init_pulse(lz_lgas *g, double d, double a, gsl_rng *rng);
 
+/* A uniform flow u = (u0, 0) along the rows (+x), from the same linearised
+ * equilibrium as the shear wave, N_k = d (1 + 2 c_k·u): the mean velocity of the
+ * particles is u0 (lattice spacings per step). Needs |u0| <= 1/2 (no link
+ * probability below 0) and d (1 + 2 |u0|) < 1. */
+int lz_lgas_init_flow(lz_lgas *g, double d, double u0, gsl_rng *rng);
+
 /* Mark site (x, y) as a wall (wrapped periodically); its particles stay and are
  * reflected at the next collision. */
 void lz_lgas_set_wall(lz_lgas *g, int32_t x, int32_t y);
+
+/* ---- Cartesian view and obstacles ----
+ * The Cartesian position (X, Y) of site (x, y) in lattice spacings, in the rectangle
+ * [0, L) x [0, L h) with h = √3/2 (FHP) or 1 (HPP): HPP (x, y); FHP
+ * X = (x + (y - L/2)/2) mod L, Y = y √3/2, i.e. each row is shifted by half a
+ * spacing against the one below, counted from the middle row y = L/2 (which is not
+ * shifted), and wrapped along the row, which is periodic. The rectangle is a whole
+ * period of the lattice, so a picture of it shows every site once; the flow along x
+ * continues across its left and right edges, and across its top and bottom edges
+ * with a shift of L/2 along x (the period (L/2, L√3/2) of the sheared storage). O(1). */
+void lz_lgas_position(const lz_lgas *g, int32_t x, int32_t y, double *X, double *Y);
+
+typedef enum { LZ_LGAS_NO_OBSTACLE, LZ_LGAS_PLATE, LZ_LGAS_DISK } lz_lgas_obstacle;
+
+/* The largest obstacle_size on a lattice of side L: L/2, so the flow can pass. */
+static inline int64_t lz_lgas_obstacle_max(int64_t side) { return side / 2; }
+
+/* Mark an obstacle as walls (bounce-back), centred on the middle row y = L/2 at
+ * X = L/4 (a quarter of the way along the flow, leaving three quarters of the box
+ * for the wake; positions as lz_lgas_position):
+ *   plate: a straight line across the flow (along y) of `size` sites, one per row,
+ *          rows L/2 - size/2 ... ; on FHP each row takes the site nearest X = L/4, so
+ *          the line zig-zags by half a spacing and is size·√3/2 spacings long, and
+ *          consecutive rows step by at most one site, so that no particle crosses it;
+ *   disk:  every site within Euclidean distance size/2 of the centre (a filled
+ *          circle of diameter `size` lattice spacings).
+ * Set walls before the initial state: the initial states leave wall sites as they
+ * are, empty on a fresh lattice.
+ * Returns the number of sites marked, or -1 with LZ_EINVAL (lz_error naming the size
+ * and the range [1, lz_lgas_obstacle_max(L)]) for a size out of range or an unknown
+ * kind. LZ_LGAS_NO_OBSTACLE marks nothing and returns 0. O(size) for a plate,
+ * O(size²) for a disk. */
+int64_t lz_lgas_add_obstacle(lz_lgas *g, lz_lgas_obstacle kind, int64_t size);
 
 /* The number of particles, and the momentum Σ c_k in integer lattice units: the sum
  * of the integer direction vectors of lz_lattice_dirs (sheared for FHP, so p[0] is
