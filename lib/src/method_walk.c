@@ -27,9 +27,6 @@
 enum { OBSERVE_NONE, OBSERVE_GR, OBSERVE_PROFILE };
 enum { WALLS_NONE, WALLS_SLIT };
 
-/* The densest packings: hexagonal disks π/√12, fcc spheres π/√18. */
-#define CLOSE_2D 0.90689968211710892
-#define CLOSE_3D 0.74048048969306104
 
 static const lz_key keys[] = {
 	{"lattice", LZ_KEY_ENUM, "square", 0, 0, 0, 0,
@@ -42,7 +39,7 @@ static const lz_key keys[] = {
 	 "particle radius R; the diameter σ = 2R must be at most L/2"},
 	{"n", LZ_KEY_INT, "", 1, 1e7, 0, 0, NULL, NULL,
 	 "number of particles (give n or packing, not both)"},
-	{"packing", LZ_KEY_REAL, "", 0, CLOSE_2D, 1, 0, NULL, NULL,
+	{"packing", LZ_KEY_REAL, "", 0, LZ_WALK_CLOSE_2D, 1, 0, NULL, NULL,
 	 "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), of the slit N·πR²/(L·H) "
 	 "with walls = slit; n is rounded from it"},
 	{"motion", LZ_KEY_ENUM, "walk", 0, 0, 0, 0, "walk|ballistic", NULL,
@@ -143,7 +140,7 @@ static int check(const lz_scene *s)
 		                     "%g in a box of side %lld", lz_scene_real(s, "packing"), radius,
 		                     side);
 	double eta = scene_packing(s, n);
-	double close = lz_lattice_dim(kind) == 2 ? CLOSE_2D : CLOSE_3D;
+	double close = lz_lattice_dim(kind) == 2 ? LZ_WALK_CLOSE_2D : LZ_WALK_CLOSE_3D;
 	if (eta > close)
 		return lz_scene_fail(s, has_n ? "n" : "packing", "n = %lld particles of radius %g "
 		                     "in a %s of side %lld pack %.4f, beyond close packing %.4f in "
@@ -229,68 +226,60 @@ static int write_gr(const lz_gr *g, double sigma, const lz_run *run)
 	return status;
 }
 
-/* The profile in reduced units, ρσ^dim, row by row (rows lo .. hi). */
-static int profile_reduced(const lz_walk *w, const lz_profile *p, double *rho)
+/* The profile in reduced units, ρσ^dim, row by row (rows lo .. hi), in a new array
+ * (NULL with lz_error on failure). Computed once, for the summary and the file. */
+static double *profile_reduced(const lz_walk *w, const lz_profile *p)
 {
-	int status = lz_profile_result(p, rho);
+	int rows = p->hi - p->lo + 1;
+	double *rho = malloc((size_t)rows * sizeof *rho);
+	if (!rho)
+		return lz_error(LZ_ENOMEM, "no memory for %d profile rows", rows), NULL;
+	if (lz_profile_result(p, rho) != LZ_OK) {
+		free(rho);
+		return NULL;
+	}
 	double scale = pow(2 * w->radius, w->dim);
-	for (int c = 0; status == LZ_OK && c <= p->hi - p->lo; c++)
+	for (int c = 0; c < rows; c++)
 		rho[c] *= scale;
-	return status;
+	return rho;
 }
 
 /* Contact (the mean of the two wall rows) and middle (the middle fifth of the rows)
  * reduced densities: at a hard wall the contact density is the pressure, βP = ρ(contact). */
-static int profile_summary(const lz_walk *w, const lz_profile *p, lz_json *j)
+static void profile_summary(const lz_profile *p, const double *rho, lz_json *j)
 {
 	int rows = p->hi - p->lo + 1;
-	double *rho = malloc((size_t)rows * sizeof *rho);
-	if (!rho)
-		return lz_error(LZ_ENOMEM, "no memory for %d profile rows", rows);
-	int status = profile_reduced(w, p, rho);
-	if (status == LZ_OK) {
-		int a = rows / 2 - rows / 10, b = rows / 2 + rows / 10;
-		double mid = 0;
-		for (int c = a; c <= b; c++)
-			mid += rho[c] / (b - a + 1);
-		lz_json_num(j, "contact_density", (rho[0] + rho[rows - 1]) / 2);
-		lz_json_num(j, "middle_density", mid);
-		lz_json_int(j, "profile_samples", (long long)p->nsamples);
-	}
-	free(rho);
-	return status;
+	int a = rows / 2 - rows / 10, b = rows / 2 + rows / 10;
+	double mid = 0;
+	for (int c = a; c <= b; c++)
+		mid += rho[c] / (b - a + 1);
+	lz_json_num(j, "contact_density", (rho[0] + rho[rows - 1]) / 2);
+	lz_json_num(j, "middle_density", mid);
+	lz_json_int(j, "profile_samples", (long long)p->nsamples);
 }
 
-static int write_profile(const lz_walk *w, const lz_profile *p, const lz_run *run)
+static int write_profile(const lz_walk *w, const lz_profile *p, const double *rho,
+                         const lz_run *run)
 {
 	static const char *const names[] = {"z/sigma", "rho_reduced"};
 	static const char *const units[] = {"σ = 2R, from contact with the lower wall", "ρσ^dim"};
-	int rows = p->hi - p->lo + 1;
-	double *rho = malloc((size_t)rows * sizeof *rho);
-	if (!rho)
-		return lz_error(LZ_ENOMEM, "no memory for %d profile rows", rows);
-	int status = profile_reduced(w, p, rho);
 	char path[4200], title[240];
-	lz_data *d = NULL;
-	if (status == LZ_OK)
-		status = lz_rundir_file(run->dir, "profile.dat", path, sizeof path);
-	if (status == LZ_OK) {
-		snprintf(title, sizeof title, "density across a slit of width %g (walls at z/σ = "
-		         "-0.5 and %g), %zu disks of radius %g on the %s lattice, %llu configurations",
-		         w->slit_width, w->slit_width / (2 * w->radius) - 0.5, w->n, w->radius,
-		         lz_lattice_name(w->box->kind), (unsigned long long)p->nsamples);
-		d = lz_data_open(path, title, 2, names, units);
-		status = d ? LZ_OK : LZ_EIO;
-	}
+	int status = lz_rundir_file(run->dir, "profile.dat", path, sizeof path);
+	if (status != LZ_OK)
+		return status;
+	snprintf(title, sizeof title, "density across a slit of width %g (walls at z/σ = -0.5 "
+	         "and %g), %zu disks of radius %g on the %s lattice, %llu configurations",
+	         w->slit_width, w->slit_width / (2 * w->radius) - 0.5, w->n, w->radius,
+	         lz_lattice_name(w->box->kind), (unsigned long long)p->nsamples);
+	lz_data *d = lz_data_open(path, title, 2, names, units);
+	if (!d)
+		return LZ_EIO;
 	double h = lz_walk_row_spacing(w->box->kind), sigma = 2 * w->radius;
-	for (int c = 0; status == LZ_OK && c < rows; c++) {
+	for (int c = 0; c <= p->hi - p->lo; c++) {
 		double row[2] = {((p->lo + c) * h - w->radius) / sigma, rho[c]};
 		lz_data_row(d, row);
 	}
-	if (d && lz_data_close(d) != LZ_OK && status == LZ_OK)
-		status = LZ_EIO;
-	free(rho);
-	return status;
+	return lz_data_close(d);
 }
 
 /* The plot of walk.gp below its terminal lines: g(r), the profile, or the disks. */
@@ -372,12 +361,14 @@ typedef struct {
 	lz_walk *w;
 	lz_gr *g;          /* observe = gr */
 	lz_profile *prof;  /* observe = profile */
+	double *rho;       /* its reduced density per row, once measured */
 	double wall;       /* seconds in the measured sweeps */
 	uint64_t moves0, acc0;  /* the counters when the measurement began */
 } state;
 
 static void state_free(state *st)
 {
+	free(st->rho);
 	lz_profile_free(st->prof);
 	lz_gr_free(st->g);
 	lz_walk_free(st->w);
@@ -463,7 +454,7 @@ static double reduced_density(const lz_walk *w)
 	return (double)w->n * pow(sigma, w->dim) / volume;
 }
 
-static int summarise(const state *st, double eta, lz_json *j)
+static void summarise(const state *st, double eta, lz_json *j)
 {
 	const lz_walk *w = st->w;
 	uint64_t moves = w->moves - st->moves0, acc = w->accepted - st->acc0;
@@ -480,9 +471,8 @@ static int summarise(const state *st, double eta, lz_json *j)
 	            (long long)(w->dim * sizeof(int32_t) + sizeof(int)));
 	if (st->g)
 		lz_json_int(j, "gr_samples", (long long)st->g->nsamples);
-	if (st->prof && st->prof->nsamples > 0)
-		return profile_summary(w, st->prof, j);
-	return LZ_OK;
+	if (st->rho)
+		profile_summary(st->prof, st->rho, j);
 }
 
 static int run(const lz_scene *s, lz_run *run)
@@ -492,16 +482,19 @@ static int run(const lz_scene *s, lz_run *run)
 	if (status == LZ_OK)
 		status = measure(s, &st, run->quiet);
 	double eta = scene_packing(s, (long long)scene_n(s));
+	if (status == LZ_OK && st.prof && st.prof->nsamples > 0 &&
+	    !(st.rho = profile_reduced(st.w, st.prof)))
+		status = LZ_ENOMEM;
 	if (status == LZ_OK)
-		status = summarise(&st, eta, run->summary);
+		summarise(&st, eta, run->summary);
 	if (status == LZ_OK)
 		status = write_config(st.w, run);
 	if (status == LZ_OK && st.g && st.g->nsamples > 0)
 		status = write_gr(st.g, 2 * st.w->radius, run);
-	if (status == LZ_OK && st.prof && st.prof->nsamples > 0)
-		status = write_profile(st.w, st.prof, run);
+	if (status == LZ_OK && st.rho)
+		status = write_profile(st.w, st.prof, st.rho, run);
 	int shown = st.g && st.g->nsamples > 0 ? OBSERVE_GR
-	            : st.prof && st.prof->nsamples > 0 ? OBSERVE_PROFILE : OBSERVE_NONE;
+	            : st.rho ? OBSERVE_PROFILE : OBSERVE_NONE;
 	if (status == LZ_OK)
 		status = write_plot(st.w, shown, eta, run);
 	state_free(&st);

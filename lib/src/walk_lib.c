@@ -10,9 +10,6 @@
 #include "lz/error.h"
 #include "lz/walk.h"
 
-/* The densest packings: hexagonal disks π/√12 and fcc spheres π/√18. */
-#define CLOSE_2D 0.90689968211710892
-#define CLOSE_3D 0.74048048969306104
 
 double lz_walk_packing(lz_lattice_kind kind, int64_t side, double radius, size_t n)
 {
@@ -64,7 +61,8 @@ lz_walk *lz_walk_alloc(lz_lattice_kind kind, int64_t side, double radius, size_t
 	if (motion != LZ_WALK_RANDOM && motion != LZ_WALK_BALLISTIC)
 		return lz_error(LZ_EINVAL, "motion %d is neither random walk nor ballistic",
 		                (int)motion), NULL;
-	double eta = lz_walk_packing(kind, side, radius, n), close = dim == 2 ? CLOSE_2D : CLOSE_3D;
+	double eta = lz_walk_packing(kind, side, radius, n);
+	double close = dim == 2 ? LZ_WALK_CLOSE_2D : LZ_WALK_CLOSE_3D;
 	if (eta > close)
 		return lz_error(LZ_EINVAL, "n = %zu disks of radius %g in a box of side %lld have "
 		                "packing fraction %.4f, beyond close packing %.4f: no such "

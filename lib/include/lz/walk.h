@@ -40,6 +40,11 @@
 
 typedef enum { LZ_WALK_RANDOM, LZ_WALK_BALLISTIC } lz_walk_motion;
 
+/* The densest packings, no configuration beyond them exists: hexagonal disks π/√12,
+ * fcc spheres π/√18. */
+#define LZ_WALK_CLOSE_2D 0.90689968211710892
+#define LZ_WALK_CLOSE_3D 0.74048048969306104
+
 /* The walkers. Invariants: r holds n sites, dim int32_t each, flat (r[i·dim + c],
  * the layout of lz_gr_add_config), every coordinate in [0, L); no two particles
  * overlap once placed; dir[i] is in [0, ndir). */
