@@ -1,0 +1,57 @@
+/* shape.c — the lattice points of a disk (sphere) and its head and tail tables
+ * (graded). */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lz/error.h"
+#include "lz/shape.h"
+
+/* Scan the bounding box and keep the offsets strictly inside: the integer test
+ * d2 < r2 needs no floating point and no square root. */
+int lz_shape_fill_points(lz_shape *s)
+{
+	/* Hint: three nested loops over -reach .. reach (the z loop runs only from 0 to 0
+	 * in 2D). An offset is in the shape when lz_lattice_dist2(s->kind, x, y, z) <
+	 * s->r2 — strictly below: a point at distance exactly r is outside (lz_shape_contains
+	 * says it in one call). Append it to s->pts and count it in s->n (start n at 0).
+	 * See the field section of lessons/03-field/README.md. */
+	/* LZ_SOLUTION_BEGIN */
+	int32_t R = s->reach, zr = s->dim == 3 ? R : 0;
+	s->n = 0;
+	for (int32_t z = -zr; z <= zr; z++)
+		for (int32_t y = -R; y <= R; y++)
+			for (int32_t x = -R; x <= R; x++)
+				if (lz_shape_contains(s, x, y, z))
+					s->pts[s->n++] = (lz_site){x, y, z};
+	return LZ_OK;
+	/* LZ_SOLUTION_END */
+}
+
+/* A head point is p + e for a point p of S with p + e outside S; a tail point is a
+ * point p of S with p - e outside S (it is not in S + e). Each point of S is looked
+ * at once per direction, and membership is the O(1) distance test. */
+int lz_shape_fill_moves(lz_shape *s)
+{
+	/* Hint: for every direction d with step e = s->dirs[d]: go through the points p of
+	 * s->pts; if p + e is not in the shape, p + e is a head point (the shape gains it
+	 * when its centre steps by e); if p - e is not in the shape, p is a tail point (the
+	 * shape loses it). Both are offsets from the centre before the step. Count them in
+	 * s->nmove[d] (there are as many heads as tails). self[d] is 1 when e itself is in
+	 * the shape. See fig. 2.9 of the thesis and lessons/03-field/README.md. */
+	/* LZ_SOLUTION_BEGIN */
+	for (int d = 0; d < s->ndir; d++) {
+		lz_site e = s->dirs[d];
+		size_t nh = 0, nt = 0;
+		for (size_t k = 0; k < s->n; k++) {
+			lz_site p = s->pts[k];
+			if (!lz_shape_contains(s, p.x + e.x, p.y + e.y, p.z + e.z))
+				s->head[d][nh++] = (lz_site){p.x + e.x, p.y + e.y, p.z + e.z};
+			if (!lz_shape_contains(s, p.x - e.x, p.y - e.y, p.z - e.z))
+				s->tail[d][nt++] = p;
+		}
+		s->nmove[d] = nh;
+		s->self[d] = lz_shape_contains(s, e.x, e.y, e.z);
+	}
+	return LZ_OK;
+	/* LZ_SOLUTION_END */
+}
