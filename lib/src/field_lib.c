@@ -9,26 +9,60 @@
 #include "lz/field.h"
 #include "lz/walk.h"
 
-lz_field *lz_field_alloc(lz_lattice_kind kind, int64_t side, double radius)
+/* The sites of a cube (square) of side `side` in `dim` dimensions; 0 with an lz_error
+ * when beyond the field's limit. `what` names the side in the message. */
+static size_t field_sites(int64_t side, int dim, const char *what)
+{
+	size_t n = (size_t)side * (size_t)side * (dim == 3 ? (size_t)side : 1);
+	if (n > LZ_FIELD_SITES_MAX)
+		return lz_error(LZ_EINVAL, "%s = %lld gives %zu sites in %dD, more than the "
+		                "field's limit of %zu (one byte each, 1 GiB): take %s <= %d", what,
+		                (long long)side, n, dim, LZ_FIELD_SITES_MAX, what,
+		                dim == 2 ? 32768 : 1024), (size_t)0;
+	return n;
+}
+
+/* Check the arguments of lz_field_alloc_in; the dimension, or 0 with an lz_error. */
+static int field_check(lz_lattice_kind kind, int64_t side, double radius, int64_t pitch)
 {
 	int dim = lz_lattice_kind_side_check(kind, side);
 	if (dim == 0)
-		return NULL;
+		return 0;
 	if (side < 2)
-		return lz_error(LZ_EINVAL, "side = 1: a field needs a box of side 2 or more"), NULL;
-	size_t nsites = (size_t)side * (size_t)side * (dim == 3 ? (size_t)side : 1);
-	if (nsites > LZ_FIELD_SITES_MAX)
-		return lz_error(LZ_EINVAL, "side = %lld gives %zu sites in %dD, more than the "
-		                "field's limit of %zu (one byte each): take L <= %d", (long long)side,
-		                nsites, dim, LZ_FIELD_SITES_MAX, dim == 2 ? 32768 : 1024), NULL;
+		return lz_error(LZ_EINVAL, "side = 1: a field needs a box of side 2 or more"), 0;
+	if (pitch < side || (pitch & (pitch - 1)) != 0)
+		return lz_error(LZ_EINVAL, "pitch = %lld: the allocated lattice must have a "
+		                "power-of-two side of at least the box side L = %lld",
+		                (long long)pitch, (long long)side), 0;
+	if (field_sites(pitch, dim, pitch == side ? "side" : "pitch") == 0)
+		return 0;
 	if (!(radius > 0) || !isfinite(radius))
 		return lz_error(LZ_EINVAL, "radius = %g lattice units must be positive and finite",
-		                radius), NULL;
+		                radius), 0;
 	if (4.0 * radius > (double)side)
 		return lz_error(LZ_EINVAL, "radius = %g lattice units is too large for a box of side "
 		                "%lld: the excluded disk of radius 2R = %g must fit in the box, "
 		                "2·2R <= L (or it would wrap onto itself); allowed 0 < R <= %g",
-		                radius, (long long)side, 2 * radius, (double)side / 4), NULL;
+		                radius, (long long)side, 2 * radius, (double)side / 4), 0;
+	return dim;
+}
+
+/* Mark the allocated sites outside the box (any coordinate >= L) as never free. */
+static void field_fence(lz_field *f, int64_t pitch)
+{
+	for (size_t s = 0; s < f->nsites; s++) {
+		size_t x = s % (size_t)pitch, y = s / (size_t)pitch % (size_t)pitch;
+		size_t z = s / ((size_t)pitch * (size_t)pitch);
+		if (x >= (size_t)f->side || y >= (size_t)f->side || z >= (size_t)f->side)
+			f->cell[s] = UINT8_MAX;
+	}
+}
+
+lz_field *lz_field_alloc_in(lz_lattice_kind kind, int64_t side, double radius, int64_t pitch)
+{
+	int dim = field_check(kind, side, radius, pitch);
+	if (dim == 0)
+		return NULL;
 	lz_field *f = calloc(1, sizeof *f);
 	if (!f)
 		return lz_error(LZ_ENOMEM, "no memory for a field"), NULL;
@@ -36,22 +70,30 @@ lz_field *lz_field_alloc(lz_lattice_kind kind, int64_t side, double radius)
 	f->dim = dim;
 	f->side = (int32_t)side;
 	f->mask = (int32_t)(side - 1);
-	while (((int64_t)1 << f->shift) < side)
+	while (((int64_t)1 << f->shift) < pitch)
 		f->shift++;
-	f->nsites = nsites;
-	f->nfree = nsites;
+	f->nsites = field_sites(pitch, dim, "pitch");
+	f->nfree = field_sites(side, dim, "side");
 	f->radius = radius;
-	f->cell = calloc(nsites, 1);
+	f->cell = calloc(f->nsites, 1);
 	if (!f->cell) {
+		lz_error(LZ_ENOMEM, "no memory for a field of %zu sites", f->nsites);
 		lz_field_free(f);
-		return lz_error(LZ_ENOMEM, "no memory for a field of %zu sites", nsites), NULL;
+		return NULL;
 	}
+	if (pitch > side)
+		field_fence(f, pitch);
 	f->excl = lz_shape_alloc(kind, 2 * radius);
 	if (!f->excl) {
 		lz_field_free(f);
 		return NULL;
 	}
 	return f;
+}
+
+lz_field *lz_field_alloc(lz_lattice_kind kind, int64_t side, double radius)
+{
+	return lz_field_alloc_in(kind, side, radius, side);
 }
 
 void lz_field_free(lz_field *f)

@@ -19,8 +19,11 @@
  * The move itself repaints only the head points (+1) and the tail points (-1).
  *
  * The box is periodic, of side L (a power of two) in every direction, L^dim sites,
- * site (x, y, z) stored at cell[x | y << shift | z << 2·shift], shift = log2 L. Every
- * painted offset is wrapped with & mask. The excluded disk must fit in the box,
+ * site (x, y, z) stored at cell[x | y << shift | z << 2·shift], shift = log2 P, where
+ * P = L normally. Every painted offset is wrapped with & mask (mask = L - 1). For the
+ * memory-locality experiment (thesis table 2.3) the box may sit in a corner of a
+ * larger allocated lattice of side P > L (lz_field_alloc_in): rows are then P sites
+ * apart in memory, the sites outside the box hold 255 and are never free. The excluded disk must fit in the box,
  * 2σ = 4R <= L (as in walk.h): then no particle covers a site twice through its
  * periodic images, and covered means "the nearest image overlaps".
  *
@@ -58,8 +61,8 @@ typedef struct {
 	int dim;              /* 2 or 3 */
 	int32_t side;         /* L, a power of two */
 	int32_t mask;         /* L - 1 */
-	int shift;            /* log2 L */
-	size_t nsites;        /* L^dim */
+	int shift;            /* log2 P, P the allocated side (P = L but in lz_field_alloc_in) */
+	size_t nsites;        /* P^dim, the bytes in cell (L^dim but in lz_field_alloc_in) */
 	uint8_t *cell;        /* the field, nsites bytes */
 	size_t nfree;         /* sites with cell == 0 */
 	double radius;        /* R, the particles' radius, lattice units */
@@ -89,6 +92,14 @@ static inline size_t lz_field_index(const lz_field *f, int32_t x, int32_t y, int
  * LZ_SHAPE_BOX_MAX; or no memory. Builds the excluded shape with lz_shape_alloc
  * (graded code runs here). O(L^dim + shape). */
 lz_field *lz_field_alloc(lz_lattice_kind kind, int64_t side, double radius);
+
+/* As lz_field_alloc, but the box of side L sits in the corner of an allocated lattice
+ * of side `pitch` (a power of two, L <= pitch, pitch^dim <= LZ_FIELD_SITES_MAX): the
+ * same simulation spread over more memory. Cells outside the box hold 255 (never
+ * free, never painted); nsites = pitch^dim, nfree counts the box only. Errors as
+ * lz_field_alloc, and on a pitch that is not a power of two or below L.
+ * O(pitch^dim + shape). */
+lz_field *lz_field_alloc_in(lz_lattice_kind kind, int64_t side, double radius, int64_t pitch);
 void lz_field_free(lz_field *f);
 
 /* Room for at least n particles in r (grows by doubling). LZ_ENOMEM on failure, with
