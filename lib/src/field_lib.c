@@ -34,7 +34,7 @@ static int field_check(lz_lattice_kind kind, int64_t side, double radius, int64_
 		return lz_error(LZ_EINVAL, "pitch = %lld: the allocated lattice must have a "
 		                "power-of-two side of at least the box side L = %lld",
 		                (long long)pitch, (long long)side), 0;
-	if (field_sites(pitch, dim, pitch == side ? "side" : "pitch") == 0)
+	if (field_sites(pitch, dim, pitch == side ? "L" : "pitch") == 0)
 		return 0;
 	if (!(radius > 0) || !isfinite(radius))
 		return lz_error(LZ_EINVAL, "radius = %g lattice units must be positive and finite",

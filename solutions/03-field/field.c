@@ -131,8 +131,9 @@ void lz_field_move(lz_field *f, size_t i, int d)
 int lz_field_rsa(lz_field *f, gsl_rng *rng, size_t target, int *jammed)
 {
 	/* Hint: loop while nfree > 0 and (target == 0 or n < target). Phase 1, while
-	 * nfree >= nsites / 16: draw x, y (and z) with gsl_rng_uniform_int(rng, L); if
-	 * lz_field_is_free, lz_field_place it. Phase 2: scan the field once into an array
+	 * nfree >= L^dim / 16 (the box's sites, not nsites): draw x, y (and z) with
+	 * gsl_rng_uniform_int(rng, L); if lz_field_is_free, lz_field_place it.
+	 * Phase 2: scan the field once into an array
 	 * of the free sites' coordinates (or indices); draw an entry k with
 	 * gsl_rng_uniform_int(rng, m); if its site is no longer free, overwrite it with the
 	 * last entry and shrink m; else place there. Count every draw in f->tries. Never
@@ -140,8 +141,9 @@ int lz_field_rsa(lz_field *f, gsl_rng *rng, size_t target, int *jammed)
 	 * the end. See lessons/03-field/README.md. */
 	/* LZ_SOLUTION_BEGIN */
 	unsigned long L = (unsigned long)f->side;
+	size_t box = (size_t)L * L * (f->dim == 3 ? L : 1);
 	int status = LZ_OK;
-	while (f->nfree > 0 && (target == 0 || f->n < target) && f->nfree >= f->nsites / 16) {
+	while (f->nfree > 0 && (target == 0 || f->n < target) && f->nfree >= box / 16) {
 		lz_site c = {0, 0, 0};
 		c.x = (int32_t)gsl_rng_uniform_int(rng, L);
 		c.y = (int32_t)gsl_rng_uniform_int(rng, L);

@@ -5,6 +5,8 @@
 
 #include <stdint.h>
 
+#include <gsl/gsl_rng.h>
+
 #include "lztest.h"
 #include "lz/field.h"
 #include "lz/lattice.h"
@@ -41,6 +43,29 @@ static inline int64_t bf_min_d2(lz_lattice_kind kind, int64_t L, const int32_t *
 
 /* (2R)² as a real number: a pair at integer d2 overlaps iff d2 < sigma². */
 static inline double bf_sigma2(double R) { return 4.0 * R * R; }
+
+static inline gsl_rng *rng_new(unsigned long seed)
+{
+	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+	gsl_rng_set(r, seed);
+	return r;
+}
+
+static inline lz_site rand_site(gsl_rng *rng, int dim, int64_t L)
+{
+	lz_site c = {0, 0, 0};
+	c.x = (int32_t)gsl_rng_uniform_int(rng, (unsigned long)L);
+	c.y = (int32_t)gsl_rng_uniform_int(rng, (unsigned long)L);
+	if (dim == 3)
+		c.z = (int32_t)gsl_rng_uniform_int(rng, (unsigned long)L);
+	return c;
+}
+
+static inline void place(lz_field *f, lz_site c)
+{
+	ck_assert_msg(lz_field_place(f, c) == LZ_OK, "lz_field_place(%d, %d, %d): %s", c.x, c.y,
+	              c.z, lz_error_message());
+}
 
 static inline lz_field *field_new(lz_lattice_kind kind, int64_t L, double R)
 {
@@ -84,6 +109,26 @@ static inline void check_field_brute(const lz_field *f, const char *what)
 	ck_assert_msg(f->nfree == zeros, "%s: nfree = %zu but %zu sites are free (cell == 0): "
 	              "the free-site count must change whenever a cell leaves or reaches 0",
 	              what, f->nfree, zeros);
+}
+
+/* Add non-overlapping particles at random until there are n (or 200 n tries have
+ * been made), each checked by brute force against those already there: no graded
+ * test decides where they go. */
+static inline void brute_config(lz_field *f, gsl_rng *rng, size_t n)
+{
+	int dim = f->dim;
+	double s2 = bf_sigma2(f->radius);
+	for (size_t t = 0; t < 200 * n && f->n < n; t++) {
+		lz_site c = rand_site(rng, dim, f->side);
+		int32_t p[3] = {c.x, c.y, c.z};
+		int ok = 1;
+		for (size_t j = 0; j < f->n && ok; j++) {
+			int32_t q[3] = {f->r[j * dim], f->r[j * dim + 1], dim == 3 ? f->r[j * dim + 2] : 0};
+			ok = (double)bf_min_d2(f->kind, f->side, p, q) >= s2;
+		}
+		if (ok)
+			place(f, c);
+	}
 }
 
 #endif

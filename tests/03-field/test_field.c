@@ -12,29 +12,6 @@
 
 #include "stage03.h"
 
-static gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
-
-static lz_site rand_site(gsl_rng *rng, int dim, int64_t L)
-{
-	lz_site c = {0, 0, 0};
-	c.x = (int32_t)gsl_rng_uniform_int(rng, (unsigned long)L);
-	c.y = (int32_t)gsl_rng_uniform_int(rng, (unsigned long)L);
-	if (dim == 3)
-		c.z = (int32_t)gsl_rng_uniform_int(rng, (unsigned long)L);
-	return c;
-}
-
-static void place(lz_field *f, lz_site c)
-{
-	ck_assert_msg(lz_field_place(f, c) == LZ_OK, "lz_field_place(%d, %d, %d): %s", c.x, c.y,
-	              c.z, lz_error_message());
-}
-
 static const struct { lz_lattice_kind kind; int L; double R; } boxes[] = {
 	{LZ_LATTICE_SQUARE, 32, 2.3}, {LZ_LATTICE_SQUARE8, 16, 1.5},
 	{LZ_LATTICE_TRIANGULAR, 32, 3}, {LZ_LATTICE_TRIANGULAR, 8, 0.5},
@@ -140,25 +117,6 @@ LZ_TEST(field_move_equals_remove_and_replace)
 	gsl_rng_free(rng);
 }
 END_TEST
-
-/* A non-overlapping configuration of about n particles, built with brute-force checks
- * only (no graded test decides where they go). */
-static void brute_config(lz_field *f, gsl_rng *rng, size_t n)
-{
-	int dim = f->dim;
-	double s2 = bf_sigma2(f->radius);
-	for (size_t t = 0; t < 200 * n && f->n < n; t++) {
-		lz_site c = rand_site(rng, dim, f->side);
-		int32_t p[3] = {c.x, c.y, c.z};
-		int ok = 1;
-		for (size_t j = 0; j < f->n && ok; j++) {
-			int32_t q[3] = {f->r[j * dim], f->r[j * dim + 1], dim == 3 ? f->r[j * dim + 2] : 0};
-			ok = (double)bf_min_d2(f->kind, f->side, p, q) >= s2;
-		}
-		if (ok)
-			place(f, c);
-	}
-}
 
 LZ_TEST(field_collision_tests_match_distances)
 {

@@ -1,16 +1,24 @@
-/* test_stage03_field.c — the library half of lz/shape.h and lz/field.h, which
- * students do not write: the input checks of lz_shape_alloc and lz_field_alloc (all
- * made before any graded code runs), the coverage, the room of the particle list,
- * the free-site scan and the site index. None of these tests calls a graded function
- * (fields are built by hand on the stack), so they pass with the stubs as well. */
+/* test_stage03_field.c — the library half of lz/shape.h, lz/field.h and lz/well.h,
+ * which students do not write: the input checks of lz_shape_alloc, lz_field_alloc,
+ * lz_field_alloc_in and lz_well_alloc (all made before any graded code runs), the
+ * coverage, the room of the particle list, the free-site scan and the site index.
+ * These call no graded function (fields are built by hand on the stack), so they
+ * pass with the stubs as well. The last tests build real fields, so they run the
+ * graded code too (the reference, as this suite always does in `make check`): a box
+ * inside a larger allocated lattice is the same simulation, and the largest fields
+ * allowed are allocated and used. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_rng.h>
+
 #include "lz/field.h"
 #include "lz/shape.h"
 #include "lz/walk.h"
+#include "lz/well.h"
 #include "lztest.h"
+#include "support.h"
 
 LZ_TEST(shape_alloc_rejects_bad_input)
 {
@@ -85,5 +93,170 @@ LZ_TEST(field_index_reserve_and_free_scan)
 	ck_assert(lz_field_reserve(&f, 1000) == LZ_OK && f.cap >= 1000);
 	f.r[3 * 999 + 2] = 42;  /* the whole room is writable (ASan checks) */
 	free(f.r);
+}
+END_TEST
+
+/* Fail unless a refused call left code LZ_EINVAL and a message containing `says`. */
+static void refused(const void *got, const char *call, const char *says)
+{
+	ck_assert_msg(got == NULL, "%s should be refused", call);
+	ck_assert_msg(lzt_last_code() == LZ_EINVAL, "%s: code %d, expected LZ_EINVAL", call,
+	              lzt_last_code());
+	ck_assert_msg(strstr(lz_error_message(), says), "%s: the message should say \"%s\": %s",
+	              call, says, lz_error_message());
+}
+
+LZ_TEST(well_alloc_rejects_bad_input)
+{
+	/* Hand-made fields (R = 2, L = 32 and 16): every check runs before graded code. */
+	lz_field f = {.kind = LZ_LATTICE_SQUARE, .dim = 2, .side = 32, .mask = 31, .shift = 5,
+	              .nsites = 1024, .radius = 2};
+	lz_field small = f;
+	small.side = 16;
+	small.mask = 15;
+	lzt_record_errors();
+	static const struct { double lambda, depth, T; const char *says; } bad[] = {
+		{1, 1, 1, "lambda = 1:"}, {0.5, 1, 1, "lambda = 0.5"}, {3.01, 1, 1, "lambda = 3.01"},
+		{NAN, 1, 1, "lambda = nan"}, {INFINITY, 1, 1, "lambda = inf"},
+		{1.5, -1, 1, "depth = -1"}, {1.5, NAN, 1, "depth = nan"},
+		{1.5, INFINITY, 1, "depth = inf"}, {1.5, 1, 0, "temperature = 0"},
+		{1.5, 1, -2, "temperature = -2"}, {1.5, 1, NAN, "temperature = nan"},
+		{1.5, 1, INFINITY, "temperature = inf"},
+	};
+	for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+		char call[128];
+		snprintf(call, sizeof call, "lz_well_alloc(lambda = %g, depth = %g, T = %g)",
+		         bad[k].lambda, bad[k].depth, bad[k].T);
+		refused(lz_well_alloc(&f, bad[k].lambda, bad[k].depth, bad[k].T), call, bad[k].says);
+	}
+	ck_assert_msg(strstr(lz_error_message(), "positive"), "%s", lz_error_message());
+	refused(lz_well_alloc(&f, 0.9, 1, 1), "lambda 0.9", "(1, 3]");
+	/* rw = 2.5 · 4 = 10: 2·rw = 20 > L = 16. The largest λ here is 16 / 8 = 2. */
+	refused(lz_well_alloc(&small, 2.5, 1, 1), "a well wider than half the box", "lambda <= 2");
+	ck_assert_msg(strstr(lz_error_message(), "rw = 10"), "%s", lz_error_message());
+	refused(lz_well_alloc(NULL, 2, 1, 1), "lz_well_alloc(NULL, ...)", "NULL");
+	lz_well_free(NULL);
+}
+END_TEST
+
+LZ_TEST(field_alloc_in_rejects_bad_pitch)
+{
+	lzt_record_errors();
+	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 16), "pitch below L", "pitch = 16");
+	ck_assert_msg(strstr(lz_error_message(), "L = 32"), "%s", lz_error_message());
+	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 48), "pitch not a power of two",
+	        "pitch = 48");
+	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 0), "pitch 0", "pitch = 0");
+	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, -64), "a negative pitch",
+	        "pitch = -64");
+	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 64, 2, 65536), "2D pitch beyond 2^30 sites",
+	        "pitch <= 32768");
+	refused(lz_field_alloc_in(LZ_LATTICE_CUBIC, 16, 2, 2048), "3D pitch beyond 2^30 sites",
+	        "pitch <= 1024");
+}
+END_TEST
+
+static gsl_rng *seeded(unsigned long seed)
+{
+	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+	gsl_rng_set(r, seed);
+	return r;
+}
+
+/* Run RSA to `target` on both fields from the same seed; fail unless they agree. */
+static void rsa_both(lz_field *f, lz_field *g, unsigned long seed, size_t target)
+{
+	gsl_rng *a = seeded(seed), *b = seeded(seed);
+	int ja = -1, jb = -1;
+	ck_assert(lz_field_rsa(f, a, target, &ja) == LZ_OK && lz_field_rsa(g, b, target, &jb) == LZ_OK);
+	ck_assert_msg(f->n == g->n && ja == jb && f->nfree == g->nfree && f->tries == g->tries,
+	              "%s L = %d: RSA in a box of pitch %d placed %zu particles (nfree %zu, %llu "
+	              "draws), the plain box %zu (nfree %zu, %llu draws), from the same seed",
+	              lz_lattice_name(f->kind), (int)f->side, 1 << g->shift, g->n, g->nfree,
+	              (unsigned long long)g->tries, f->n, f->nfree, (unsigned long long)f->tries);
+	ck_assert_msg(memcmp(f->r, g->r, f->n * (size_t)f->dim * sizeof *f->r) == 0,
+	              "RSA in a larger lattice put the particles elsewhere");
+	ck_assert_msg(lz_field_count_free(g) == g->nfree, "a scan of the larger lattice finds "
+	              "%zu free sites, nfree says %zu", lz_field_count_free(g), g->nfree);
+	gsl_rng_free(a);
+	gsl_rng_free(b);
+}
+
+/* The same Metropolis walk with a square well on both fields, from the same seed. */
+static void walk_both(lz_field *f, lz_field *g, unsigned long seed)
+{
+	lz_well *wf = lz_well_alloc(f, 1.5, 1, 0.8), *wg = lz_well_alloc(g, 1.5, 1, 0.8);
+	ck_assert_msg(wf && wg, "lz_well_alloc: %s", lz_error_message());
+	ck_assert(lz_well_energy(wf, f) == lz_well_energy(wg, g));
+	gsl_rng *a = seeded(seed), *b = seeded(seed);
+	for (int t = 0; t < 20000; t++) {
+		size_t i = gsl_rng_uniform_int(a, f->n);
+		int d = (int)gsl_rng_uniform_int(a, (unsigned long)f->excl->ndir);
+		gsl_rng_uniform_int(b, g->n);
+		gsl_rng_uniform_int(b, (unsigned long)g->excl->ndir);
+		ck_assert(lz_field_try_move(f, wf, i, d, a) == lz_field_try_move(g, wg, i, d, b));
+	}
+	ck_assert_msg(memcmp(f->r, g->r, f->n * (size_t)f->dim * sizeof *f->r) == 0 &&
+	              lz_well_energy(wf, f) == lz_well_energy(wg, g) && f->nfree == g->nfree,
+	              "%s: the same Metropolis walk in a larger lattice ended elsewhere",
+	              lz_lattice_name(f->kind));
+	lz_well_free(wf);
+	lz_well_free(wg);
+	gsl_rng_free(a);
+	gsl_rng_free(b);
+}
+
+LZ_TEST(field_in_a_larger_lattice_is_the_same_simulation)
+{
+	static const struct { lz_lattice_kind kind; int L; double R; } pc[] = {
+		{LZ_LATTICE_SQUARE, 64, 2}, {LZ_LATTICE_TRIANGULAR, 32, 1.5}, {LZ_LATTICE_CUBIC, 16, 1.2},
+	};
+	for (size_t k = 0; k < sizeof pc / sizeof pc[0]; k++) {
+		int L = pc[k].L, P = 4 * L;
+		lz_field *f = lz_field_alloc(pc[k].kind, L, pc[k].R);
+		lz_field *g = lz_field_alloc_in(pc[k].kind, L, pc[k].R, P);
+		ck_assert_msg(f && g, "%s", lz_error_message());
+		size_t box = f->nsites, fenced = 0;
+		ck_assert_msg(g->nsites == box * (f->dim == 3 ? 64 : 16) && g->nfree == box,
+		              "pitch 4L: %zu sites allocated (expected %zu), %zu free (expected the "
+		              "box's %zu)", g->nsites, box * (f->dim == 3 ? 64 : 16), g->nfree, box);
+		for (size_t s = 0; s < g->nsites; s++)
+			fenced += g->cell[s] == 255;
+		ck_assert_msg(fenced == g->nsites - box, "%zu sites hold 255, expected the %zu "
+		              "outside the box", fenced, g->nsites - box);
+		rsa_both(f, g, 61 + k, box / 400);
+		rsa_both(f, g, 67 + k, 0);
+		walk_both(f, g, 71 + k);
+		lz_field_free(f);
+		lz_field_free(g);
+	}
+}
+END_TEST
+
+/* The largest field of `kind` (2^30 sites, 1 GiB: calloc hands out untouched pages, so
+ * this is fast) with one particle on the far corner, whose shape wraps round to the
+ * origin; then the next power of two is refused, naming the limit. */
+static void largest(lz_lattice_kind kind, int64_t L, const char *limit)
+{
+	lz_field *f = lz_field_alloc(kind, L, 2);
+	ck_assert_msg(f != NULL, "%s L = %lld is within 2^30 sites and must be allowed: %s",
+	              lz_lattice_name(kind), (long long)L, lz_error_message());
+	ck_assert(f->nsites == (size_t)1 << 30 && f->nfree == f->nsites);
+	int32_t c = (int32_t)(L - 1);
+	ck_assert(lz_field_place(f, (lz_site){c, c, f->dim == 3 ? c : 0}) == LZ_OK);
+	ck_assert_msg(f->nfree == f->nsites - f->excl->n, "one particle in the largest field: "
+	              "nfree = %zu, expected %zu", f->nfree, f->nsites - f->excl->n);
+	ck_assert_msg(f->cell[0] == 1 && f->cell[lz_field_index(f, c, c, c)] == 1,
+	              "the corner particle must cover its own site and, wrapped, the origin");
+	ck_assert(lz_field_remove(f, 0) == LZ_OK && f->nfree == f->nsites && f->cell[0] == 0);
+	lz_field_free(f);
+	refused(lz_field_alloc(kind, 2 * L, 2), "the next power of two", limit);
+}
+
+LZ_TEST(field_size_limits)
+{
+	lzt_record_errors();
+	largest(LZ_LATTICE_SQUARE, 32768, "L <= 32768");
+	largest(LZ_LATTICE_CUBIC, 1024, "L <= 1024");
 }
 END_TEST

@@ -147,11 +147,12 @@ void lz_field_move(lz_field *f, size_t i, int d);
  * after the other, until n == target (target 0: no limit) or no free site is left
  * (nfree == 0: jammed, established exactly, never guessed from failed tries). Each
  * new centre is a uniform draw among the sites free at that moment. Two phases with
- * the same law: while nfree >= nsites / 16, draw a site (x, then y, then z, each
- * gsl_rng_uniform_int(rng, L)) and keep it if it is free; after that, list the free
- * sites once by a scan and draw entries of the list (gsl_rng_uniform_int(rng, m), m
- * the entries left), dropping an entry whose site has become covered. Every draw
- * counts in f->tries. *jammed = 1 if nfree == 0 at the end, else 0. LZ_OK, or
+ * the same law: while nfree >= L^dim / 16 (the box's sites, not nsites: a box in a
+ * larger lattice, lz_field_alloc_in, draws the same sites), draw a site (x, then y,
+ * then z, each gsl_rng_uniform_int(rng, L)) and keep it if it is free; after that,
+ * list the free sites once by a scan and draw entries of the list
+ * (gsl_rng_uniform_int(rng, m), m the entries left), dropping an entry whose site has
+ * become covered. Every draw counts in f->tries. *jammed = 1 if nfree == 0 at the end, else 0. LZ_OK, or
  * LZ_ENOMEM if the list or r cannot grow (the particles placed so far stay).
  * O(N · |S| + L^dim). */
 int lz_field_rsa(lz_field *f, gsl_rng *rng, size_t target, int *jammed);

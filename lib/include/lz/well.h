@@ -24,8 +24,9 @@
  * values: tabulate them once per temperature and never call exp() in the run (the
  * trick of lattice spin models).
  *
- * Bytes: a site lies in the well of at most ~8 particles in 2D and ~160 in 3D for
- * λ <= 3 (the densest packing of centres within rw of a point), below 255.
+ * Bytes: a site lies in the well of at most ~40 particles in 2D and ~200 in 3D for
+ * λ <= 3 (the densest packing of centres, σ apart, within rw = 3σ of a point), below
+ * 255.
  *
  * Cost: memory one more byte per site; a move O(|head|) per field; ΔN O(1).
  */
@@ -63,9 +64,11 @@ typedef struct {
  * its table filled (lz_well_table, graded). NULL with an lz_error naming the value
  * and its allowed range on lambda outside (1, LZ_WELL_LAMBDA_MAX] or 2·rw > L (the
  * well would wrap onto itself), depth < 0 or not finite, temperature <= 0 or not
- * finite, a well shape beyond LZ_SHAPE_BOX_MAX, or no memory. After this the
- * particles of f must move only by lz_field_try_move (lz_field_place, _remove or
- * _move alone would leave the well stale). O(nsites + n · |well|). */
+ * finite, a well shape beyond LZ_SHAPE_BOX_MAX, or no memory; NULL with LZ_EPHYS if
+ * a site would lie in more than 255 wells (only an overlapping pile can: the byte
+ * would wrap). After this the particles of f must move only by lz_field_try_move
+ * (lz_field_place, _remove or _move alone would leave the well stale).
+ * O(nsites + n · |well|). */
 lz_well *lz_well_alloc(const lz_field *f, double lambda, double depth, double temperature);
 void lz_well_free(lz_well *w);
 
