@@ -76,6 +76,20 @@ double lz_lattice_cell_volume(lz_lattice_kind kind)
 	return kind == LZ_LATTICE_TRIANGULAR ? sqrt(3.0) / 2.0 : 1.0;
 }
 
+void lz_lattice_cartesian(lz_lattice_kind kind, int32_t side, const int32_t *p, double c[3])
+{
+	int dim = lz_lattice_dim(kind);
+	c[0] = p[0];
+	c[1] = p[1];
+	c[2] = dim == 3 ? p[2] : 0;
+	if (kind == LZ_LATTICE_TRIANGULAR) {
+		c[0] = p[0] + 0.5 * p[1];
+		if (c[0] >= side)
+			c[0] -= side;
+		c[1] = sqrt(3.0) / 2.0 * p[1];
+	}
+}
+
 const lz_site *lz_lattice_dirs(lz_lattice_kind kind, int *n)
 {
 	static const struct {

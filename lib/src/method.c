@@ -7,6 +7,7 @@ static const lz_method *const lz_registry[] = {
 	&lz_method_verlet,
 	&lz_method_walk,
 	&lz_method_lattice_gas,
+	&lz_method_field,
 };
 
 const lz_method *lz_method_find(const char *name)

@@ -529,21 +529,19 @@ static int write_plot(const sim *m, const lz_run *run)
 {
 	if (m->init == UNIFORM && !m->field)
 		return LZ_OK;
-	char path[4200];
-	const char *name = m->init == SHEAR ? "decay.gp" : m->init == PULSE ? "density.gp"
-	                                                                    : "velocity.gp";
-	int status = lz_rundir_file(run->dir, name, path, sizeof path);
-	FILE *f = status == LZ_OK ? fopen(path, "w") : NULL;
+	const char *name = m->init == SHEAR ? "decay" : m->init == PULSE ? "density" : "velocity";
+	static const char *const what[] = {"the shear wave's decay", "the density after the pulse",
+	                                   "the velocity field"};
+	FILE *f = lz_run_script(run, name, "lattice-gas",
+	                        what[m->init == SHEAR ? 0 : m->init == PULSE ? 1 : 2], 900,
+	                        m->init == SHEAR ? 700 : (int)(100 + 700 * row_h(m)));
 	if (!f)
-		return status != LZ_OK ? status : lz_error(LZ_EIO, "cannot write %s", path);
+		return LZ_EIO;
 	const char *model = lz_lgas_model_name(m->g->model);
 	int L = (int)m->g->side;
 	double top = L * row_h(m);
-	fprintf(f, "# lz run, method lattice-gas.\n"
-	        "set terminal pngcairo size 900,%d enhanced font 'Sans,11'\n",
-	        m->init == SHEAR ? 700 : (int)(100 + 700 * row_h(m)));
 	if (m->init == SHEAR)
-		fprintf(f, "set output 'decay.png'\nset key top right\nset grid\nset logscale y\n"
+		fprintf(f, "set key top right\nset grid\nset logscale y\n"
 		        "set title \"%s shear wave, L = %d, d = %g\"\n"
 		        "set xlabel 'time t [steps]'\n"
 		        "set ylabel 'shear-wave amplitude of j_x [momentum/site]'\n"
@@ -551,14 +549,14 @@ static int write_plot(const sim *m, const lz_run *run)
 		        "'' u 1:4 w l lw 2 dt 2 t 'fit exp(-ν k^2 t)', "
 		        "'' u 1:3 w l lw 2 t 'Boltzmann theory'\n", model, L, m->d);
 	else if (m->init == PULSE)
-		fprintf(f, "set output 'density.png'\nset size ratio -1\nunset key\n"
+		fprintf(f, "set size ratio -1\nunset key\n"
 		        "set title \"%s pulse after %llu steps: density per link\"\n"
 		        "set xlabel 'x [lattice spacings]'\nset ylabel 'y [lattice spacings]'\n"
 		        "set xrange [0:%d]\nset yrange [0:%g]\n"
 		        "set palette defined (0 'white', 1 'blue', 2 'red')\n"
 		        "plot 'density.dat' u 1:2:3 w image\n", model, m->steps, L, top);
 	else
-		fprintf(f, "set output 'velocity.png'\nset size ratio -1\nunset key\n"
+		fprintf(f, "set size ratio -1\nunset key\n"
 		        "set title \"%s flow after %llu steps, averaged over the last %llu\"\n"
 		        "set xlabel 'x [lattice spacings]'\nset ylabel 'y [lattice spacings]'\n"
 		        "set xrange [0:%d]\nset yrange [0:%g]\nset cblabel 'speed [spacings/step]'\n"
@@ -568,10 +566,7 @@ static int write_plot(const sim *m, const lz_run *run)
 		        "filled head size 1.5,20 lc palette%s\n",
 		        model, m->steps, m->samples, L, top, 1 << m->lb,
 		        m->obstacle ? ", 'obstacle.dat' u 1:2 w p pt 5 ps 0.4 lc rgb 'black'" : "");
-	if (fclose(f) != 0)
-		return lz_error(LZ_EIO, "cannot write %s", path);
-	status = lz_gnuplot(run->dir->tmp, name);
-	return status == 1 ? LZ_OK : status;
+	return lz_run_plot(run, f, name);
 }
 
 /* ---- the run ---- */

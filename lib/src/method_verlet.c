@@ -328,14 +328,11 @@ static lz_data *open_data(const sim *m, const lz_run *run)
 /* energy.gp: the relative energy error against time, and the shadow energy's. */
 static int write_plot(const sim *m, const lz_run *run)
 {
-	char path[4200];
-	int status = lz_rundir_file(run->dir, "energy.gp", path, sizeof path);
-	FILE *f = status == LZ_OK ? fopen(path, "w") : NULL;
+	FILE *f = lz_run_script(run, "energy", "verlet", "the relative energy error of the run",
+	                        900, 560);
 	if (!f)
-		return status != LZ_OK ? status : lz_error(LZ_EIO, "cannot write %s", path);
-	fprintf(f, "# The relative energy error of the run (lz run, method verlet).\n"
-	        "set terminal pngcairo size 900,560 enhanced font 'Sans,11'\n"
-	        "set output 'energy.png'\nset key below horizontal\nset grid\n"
+		return LZ_EIO;
+	fprintf(f, "set key below horizontal\nset grid\n"
 	        "set title \"%s, dt = %g τ\"\nset xlabel 'time t [τ]'\n"
 	        "set ylabel 'relative error (X - X_0)/|X_0|'\nset format y '%%.1e'\n",
 	        lz_integrator_name(m->integ), m->dt);
@@ -345,10 +342,7 @@ static int write_plot(const sim *m, const lz_run *run)
 		fprintf(f, ", '' u 1:(($5 - %.17g)/%.17g) w l lw 2 t 'shadow energy (conserved)'",
 		        m->h0, m->hscale);
 	fprintf(f, "\n");
-	if (fclose(f) != 0)
-		return lz_error(LZ_EIO, "cannot write %s", path);
-	status = lz_gnuplot(run->dir->tmp, "energy.gp");
-	return status == 1 ? LZ_OK : status;
+	return lz_run_plot(run, f, "energy");
 }
 
 /* ---- summary ---- */

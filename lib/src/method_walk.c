@@ -154,45 +154,6 @@ static int check(const lz_scene *s)
 
 /* ---- files ---- */
 
-/* Site (x, y) of the sheared triangular lattice in Cartesian coordinates. */
-static void cartesian(lz_lattice_kind kind, const int32_t *p, int dim, double *c)
-{
-	c[0] = p[0];
-	c[1] = p[1];
-	c[2] = dim == 3 ? p[2] : 0;
-	if (kind == LZ_LATTICE_TRIANGULAR) {
-		c[0] = p[0] + 0.5 * p[1];
-		c[1] = 0.8660254037844386 * p[1];
-	}
-}
-
-static int write_config(const lz_walk *w, const lz_run *run)
-{
-	static const char *const names[] = {"x", "y", "z", "R"};
-	static const char *const u2[] = {"lattice units", "lattice units", "lattice units"};
-	static const char *const names2[] = {"x", "y", "R"};
-	char path[4200];
-	int status = lz_rundir_file(run->dir, "config.dat", path, sizeof path);
-	if (status != LZ_OK)
-		return status;
-	char title[200];
-	snprintf(title, sizeof title, "final configuration, %zu particles of radius %g on the %s "
-	         "lattice (Cartesian coordinates)", w->n, w->radius, lz_lattice_name(w->box->kind));
-	int ncol = w->dim + 1;
-	lz_data *d = lz_data_open(path, title, ncol, w->dim == 3 ? names : names2, u2);
-	if (!d)
-		return LZ_EIO;
-	for (size_t i = 0; i < w->n; i++) {
-		double c[3], row[4];
-		cartesian(w->box->kind, w->r + i * (size_t)w->dim, w->dim, c);
-		for (int k = 0; k < w->dim; k++)
-			row[k] = c[k];
-		row[w->dim] = w->radius;
-		lz_data_row(d, row);
-	}
-	return lz_data_close(d);
-}
-
 static int write_gr(const lz_gr *g, double sigma, const lz_run *run)
 {
 	static const char *const names[] = {"r/sigma", "g_raw", "g"};
@@ -317,21 +278,14 @@ static int write_plot(const lz_walk *w, int observe, double eta, const lz_run *r
 {
 	if (observe == OBSERVE_NONE && w->dim != 2)
 		return LZ_OK;
-	char path[4200];
-	int status = lz_rundir_file(run->dir, "walk.gp", path, sizeof path);
-	FILE *f = status == LZ_OK ? fopen(path, "w") : NULL;
-	if (!f)
-		return status != LZ_OK ? status : lz_error(LZ_EIO, "cannot write %s", path);
 	static const char *const what[] = {"the final disks", "g(r), raw and lattice-corrected",
 	                                   "the density profile across the slit"};
-	fprintf(f, "# lz run, method walk: %s.\n"
-	        "set terminal pngcairo size 800,700 enhanced font 'Sans,11'\n"
-	        "set output 'walk.png'\nset key below horizontal\n", what[observe]);
+	FILE *f = lz_run_script(run, "walk", "walk", what[observe], 800, 700);
+	if (!f)
+		return LZ_EIO;
+	fprintf(f, "set key below horizontal\n");
 	plot_body(f, w, observe, eta);
-	if (fclose(f) != 0)
-		return lz_error(LZ_EIO, "cannot write %s", path);
-	status = lz_gnuplot(run->dir->tmp, "walk.gp");
-	return status == 1 ? LZ_OK : status;
+	return lz_run_plot(run, f, "walk");
 }
 
 /* ---- the run ---- */
@@ -488,7 +442,8 @@ static int run(const lz_scene *s, lz_run *run)
 	if (status == LZ_OK)
 		summarise(&st, eta, run->summary);
 	if (status == LZ_OK)
-		status = write_config(st.w, run);
+		status = lz_run_write_config(run, st.w->box->kind, st.w->box->side, st.w->n, st.w->r,
+		                             st.w->radius);
 	if (status == LZ_OK && st.g && st.g->nsamples > 0)
 		status = write_gr(st.g, 2 * st.w->radius, run);
 	if (status == LZ_OK && st.rho)

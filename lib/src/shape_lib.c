@@ -100,3 +100,11 @@ void lz_shape_free(lz_shape *s)
 	free(s->pts);
 	free(s);
 }
+
+double lz_shape_mean_move(const lz_shape *s)
+{
+	double sum = 0;
+	for (int d = 0; d < s->ndir; d++)
+		sum += (double)s->nmove[d];
+	return sum / s->ndir;
+}

@@ -6,6 +6,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "lz/method.h"
+#include "lz/output.h"
+#include "lz/scene.h"
 #include "lztest.h"
 #include "support.h"
 
@@ -311,4 +314,64 @@ double lzt_num(const lzt_json *j, const char *key)
 	const lzt_member *m = lzt_json_get(j, key);
 	ck_assert_msg(m && m->kind == LZT_NUM, "summary.json has no number '%s'", key);
 	return m->num;
+}
+
+lz_scene *lzt_scene(const char *path, const char *overrides)
+{
+	lz_scene *s = path ? lz_scene_read(path) : lz_scene_new("test");
+	ck_assert_msg(s != NULL, "%s", lz_error_message());
+	char buf[1024];
+	snprintf(buf, sizeof buf, "%s", overrides);
+	for (char *tok = strtok(buf, ";"); tok; tok = strtok(NULL, ";"))
+		ck_assert_msg(lz_scene_set(s, tok, "test") == LZ_OK, "override '%s': %s", tok,
+		              lz_error_message());
+	return s;
+}
+
+int lzt_bind(const lz_method *m, const char *overrides)
+{
+	lz_scene *s = lzt_scene(NULL, overrides);
+	int status = lz_scene_bind(s, m);
+	lz_scene_free(s);
+	return status;
+}
+
+/* The method's run with PATH emptied, so that no gnuplot is found. */
+static int lzt_run_without_plots(const lz_method *m, const lz_scene *s, lz_run *run)
+{
+	const char *path_env = getenv("PATH");
+	char *saved = path_env ? strdup(path_env) : NULL;
+	setenv("PATH", "", 1);
+	int status = m->run(s, run);
+	if (saved)
+		setenv("PATH", saved, 1);
+	free(saved);
+	return status;
+}
+
+int lzt_run(const lz_method *m, const char *path, const char *overrides, const char *out)
+{
+	lz_scene *s = lzt_scene(path, overrides);
+	int status = lz_scene_bind(s, m);
+	lz_rundir d;
+	if (status == LZ_OK)
+		status = lz_rundir_begin(&d, out);
+	if (status != LZ_OK) {
+		lz_scene_free(s);
+		return status;
+	}
+	char file[4200];
+	ck_assert(lz_rundir_file(&d, "summary.json", file, sizeof file) == LZ_OK);
+	lz_json *j = lz_json_open(file);
+	ck_assert(j != NULL);
+	lz_scene_json(s, j);
+	lz_run run = {&d, j, 1};
+	status = lzt_run_without_plots(m, s, &run);
+	int written = lz_json_end(j);
+	if (status == LZ_OK)
+		status = written != LZ_OK ? written : lz_rundir_commit(&d);
+	if (status != LZ_OK)
+		lz_rundir_abort(&d);
+	lz_scene_free(s);
+	return status;
 }

@@ -21,6 +21,25 @@ int lzt_exists(const char *path);
 /* Entries of dir whose names contain `part` (e.g. ".partial-"). */
 int lzt_count_matching(const char *dir, const char *part);
 
+/* ---- scenes and runs of a method ---- */
+struct lz_method;
+struct lz_scene;
+
+/* A scene: the file `path` (NULL: an empty scene named "test") with the ';'-separated
+ * key=value overrides ("a=1;b=2") applied (fails the test if the file cannot be read
+ * or an override is malformed). Free with lz_scene_free. */
+struct lz_scene *lzt_scene(const char *path, const char *overrides);
+/* The status of binding lzt_scene(NULL, overrides) to method m (the message is
+ * lz_error_message()). */
+int lzt_bind(const struct lz_method *m, const char *overrides);
+/* Run method m on lzt_scene(path, overrides) into the run directory `out` as `lz run`
+ * does — bind, summary.json with the parameters, run, commit — but without plots
+ * (PATH is emptied while it runs). Returns the status of the bind or of the run (the
+ * message is lz_error_message()); on success out/summary.json is there, on failure
+ * nothing is left behind. */
+int lzt_run(const struct lz_method *m, const char *path, const char *overrides,
+            const char *out);
+
 /* The code of the last lz_error (the runner's handler is quiet; this one records). */
 void lzt_record_errors(void);
 int lzt_last_code(void);

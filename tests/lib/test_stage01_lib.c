@@ -440,14 +440,7 @@ END_TEST
 /* Bind a verlet scene built from `text` lines ("a=1;b=2" style, ';'-separated). */
 static int bind_verlet(const char *assignments)
 {
-	lz_scene *s = lz_scene_new("test");
-	char buf[512];
-	snprintf(buf, sizeof buf, "%s", assignments);
-	for (char *tok = strtok(buf, ";"); tok; tok = strtok(NULL, ";"))
-		ck_assert(lz_scene_set(s, tok, "test") == LZ_OK);
-	int status = lz_scene_bind(s, &lz_method_verlet);
-	lz_scene_free(s);
-	return status;
+	return lzt_bind(&lz_method_verlet, assignments);
 }
 
 LZ_TEST(verlet_scene_checks)

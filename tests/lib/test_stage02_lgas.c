@@ -251,14 +251,7 @@ END_TEST
 /* Bind a lattice-gas scene from "a=1;b=2" assignments. */
 static int bind_lgas(const char *assignments)
 {
-	lz_scene *s = lz_scene_new("test");
-	char buf[512];
-	snprintf(buf, sizeof buf, "%s", assignments);
-	for (char *tok = strtok(buf, ";"); tok; tok = strtok(NULL, ";"))
-		ck_assert(lz_scene_set(s, tok, "test") == LZ_OK);
-	int status = lz_scene_bind(s, &lz_method_lattice_gas);
-	lz_scene_free(s);
-	return status;
+	return lzt_bind(&lz_method_lattice_gas, assignments);
 }
 
 LZ_TEST(lgas_scene_rejects_bad_obstacles)
@@ -300,32 +293,9 @@ END_TEST
  * directory in *dir. Plots are skipped (PATH without gnuplot): the numbers are tested. */
 static lzt_json *run_lgas(const char *scene, const char *overrides, const char **dir)
 {
-	lz_scene *s = lz_scene_read(scene);
-	ck_assert_msg(s != NULL, "%s", lz_error_message());
-	char buf[512];
-	snprintf(buf, sizeof buf, "%s", overrides);
-	for (char *tok = strtok(buf, ";"); tok; tok = strtok(NULL, ";"))
-		ck_assert(lz_scene_set(s, tok, "test") == LZ_OK);
-	ck_assert_msg(lz_scene_bind(s, &lz_method_lattice_gas) == LZ_OK, "%s", lz_error_message());
 	*dir = lzt_tmpdir();
-	lz_rundir d;
-	ck_assert(lz_rundir_begin(&d, lzt_path(*dir, "run")) == LZ_OK);
-	char path[4200];
-	ck_assert(lz_rundir_file(&d, "summary.json", path, sizeof path) == LZ_OK);
-	lz_json *j = lz_json_open(path);
-	ck_assert(j != NULL);
-	lz_scene_json(s, j);
-	lz_run run = {&d, j, 1};
-	const char *path_env = getenv("PATH");
-	char *saved = path_env ? strdup(path_env) : NULL;
-	setenv("PATH", "", 1);
-	int status = lz_method_lattice_gas.run(s, &run);
-	if (saved)
-		setenv("PATH", saved, 1);
-	free(saved);
+	int status = lzt_run(&lz_method_lattice_gas, scene, overrides, lzt_path(*dir, "run"));
 	ck_assert_msg(status == LZ_OK, "%s with %s failed: %s", scene, overrides, lz_error_message());
-	ck_assert(lz_json_end(j) == LZ_OK && lz_rundir_commit(&d) == LZ_OK);
-	lz_scene_free(s);
 	return lzt_summary(lzt_path(*dir, "run"));
 }
 

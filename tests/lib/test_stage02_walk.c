@@ -12,6 +12,7 @@
 #include "lz/profile.h"
 #include "lz/walk.h"
 #include "lztest.h"
+#include "support.h"
 
 LZ_TEST(walk_packing_fraction)
 {
@@ -48,14 +49,7 @@ END_TEST
 
 static int bind_walk(const char *assignments)
 {
-	lz_scene *s = lz_scene_new("test");
-	char buf[512];
-	snprintf(buf, sizeof buf, "%s", assignments);
-	for (char *tok = strtok(buf, ";"); tok; tok = strtok(NULL, ";"))
-		ck_assert(lz_scene_set(s, tok, "test") == LZ_OK);
-	int status = lz_scene_bind(s, &lz_method_walk);
-	lz_scene_free(s);
-	return status;
+	return lzt_bind(&lz_method_walk, assignments);
 }
 
 LZ_TEST(walk_scene_checks)

@@ -51,6 +51,14 @@ int lz_lattice_dim(lz_lattice_kind kind);
  * has N / (V · cell) points per unit area. */
 double lz_lattice_cell_volume(lz_lattice_kind kind);
 
+/* The Cartesian coordinates c[0..2] (lattice units, c[2] = 0 in 2D) of site p (dim =
+ * lz_lattice_dim(kind) int32_t, the layout of a particle array) of a periodic box of
+ * side L, each coordinate of p in [0, L). The triangular site (i, j) is at
+ * (i + j/2, j·√3/2) with the x wrapped into [0, L): the sheared rhombus of the box is
+ * then drawn as the L × L√3/2 rectangle, an equivalent periodic cell (rows are whole
+ * periods L long). O(1). */
+void lz_lattice_cartesian(lz_lattice_kind kind, int32_t side, const int32_t *p, double c[3]);
+
 /* The direction table of a lattice (thesis 2.4.1, DIRX/DIRY): *n directions, 4, 8, 6,
  * 6, 18 or 26. Invariant for every kind: the opposite of direction i is direction
  * (i + n/2) mod n, so a reversal is one addition. In 2D the directions go

@@ -10,6 +10,10 @@
 #define LZ_METHOD_H
 
 #include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "lz/lattice.h"
 #include "lz/output.h"
 #include "lz/scene.h"
 
@@ -29,6 +33,26 @@ typedef struct lz_method {
 	int (*run)(const lz_scene *s, lz_run *run);
 } lz_method;
 
+/* ---- files the methods share (lib/src/run_files.c) ---- */
+
+/* config.dat in the run directory: n particles of radius R (lattice units) centred on
+ * the sites r (dim int32_t each, every coordinate in [0, L)) of a periodic box of side
+ * L on lattice `kind`, one row per particle, x y [z] R in Cartesian coordinates
+ * (lz_lattice_cartesian), under a header naming the columns. LZ_EIO on a write error.
+ * O(n). */
+int lz_run_write_config(const lz_run *run, lz_lattice_kind kind, int32_t side, size_t n,
+                        const int32_t *r, double radius);
+
+/* The gnuplot script NAME.gp opened for writing in the run directory and begun: a
+ * comment line "# lz run, method METHOD: WHAT.", the pngcairo terminal of width ×
+ * height pixels and the output NAME.png. NULL with an lz_error. */
+FILE *lz_run_script(const lz_run *run, const char *name, const char *method,
+                    const char *what, int width, int height);
+/* Close script f (from lz_run_script, always closed here) and run gnuplot on NAME.gp
+ * in the run directory. LZ_OK also when gnuplot is not installed (the plot is
+ * skipped); LZ_EIO when the script could not be written or gnuplot failed. */
+int lz_run_plot(const lz_run *run, FILE *f, const char *name);
+
 /* The method named `name`, or NULL. */
 const lz_method *lz_method_find(const char *name);
 /* All registered methods, in course order; *n gets their number. */
@@ -38,5 +62,6 @@ const lz_method *const *lz_methods(size_t *n);
 extern const lz_method lz_method_verlet;
 extern const lz_method lz_method_walk;
 extern const lz_method lz_method_lattice_gas;
+extern const lz_method lz_method_field;
 
 #endif

@@ -72,6 +72,10 @@ static inline int lz_shape_contains(const lz_shape *s, int32_t x, int32_t y, int
 	return lz_lattice_dist2(s->kind, x, y, z) < s->r2;
 }
 
+/* The mean of nmove[d] over the directions: the points a step repaints +1 (and as
+ * many -1), the cost of a move. O(ndir). */
+double lz_shape_mean_move(const lz_shape *s);
+
 /* ---- graded (solutions/03-field/shape.c) ---- */
 
 /* Fill s->pts with every offset of S (header comment) and set s->n. Scan the
