@@ -47,15 +47,16 @@ static int field_check(lz_lattice_kind kind, int64_t side, double radius, int64_
 	return dim;
 }
 
-/* Mark the allocated sites outside the box (any coordinate >= L) as never free. */
+/* Mark the allocated sites outside the box (any coordinate >= L) as never free: all
+ * 255, then the box's rows cleared, one memset per row (a divide per site would take
+ * seconds at pitch 16384). */
 static void field_fence(lz_field *f, int64_t pitch)
 {
-	for (size_t s = 0; s < f->nsites; s++) {
-		size_t x = s % (size_t)pitch, y = s / (size_t)pitch % (size_t)pitch;
-		size_t z = s / ((size_t)pitch * (size_t)pitch);
-		if (x >= (size_t)f->side || y >= (size_t)f->side || z >= (size_t)f->side)
-			f->cell[s] = UINT8_MAX;
-	}
+	size_t P = (size_t)pitch, L = (size_t)f->side;
+	memset(f->cell, UINT8_MAX, f->nsites);
+	for (size_t z = 0; z < (f->dim == 3 ? L : 1); z++)
+		for (size_t y = 0; y < L; y++)
+			memset(f->cell + (z * P + y) * P, 0, L);
 }
 
 lz_field *lz_field_alloc_in(lz_lattice_kind kind, int64_t side, double radius, int64_t pitch)
