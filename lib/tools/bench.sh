@@ -103,9 +103,9 @@ while IFS= read -r line || [ -n "$line" ]; do
 			bytes = ""
 			for (i = 4; i <= NF; i++) {
 				split($i, kv, "="); f[kv[1]] = kv[2]
-				if (kv[1] ~ /^state_bytes_per_/) bytes = kv[2] "/" substr(kv[1], 17)
+				if (kv[1] ~ /^state_bytes_per_/) bytes = sprintf("%.0f", kv[2]) "/" substr(kv[1], 17)
 			}
-			n = split("atomsteps_per_s site_updates_per_s events_per_s steps_per_s", order, " ")
+			n = split("atomsteps_per_s site_updates_per_s events_per_s placed_per_s steps_per_s", order, " ")
 			for (k = 1; k <= n && !(order[k] in f); k++) ;
 			key = k <= n ? order[k] : "steps_per_s"
 			printf "%-14s %-46s %11.4g %-19s %13s %8.3f\n", $2, $3, f[key], key, bytes, f["wall_s"] }'
