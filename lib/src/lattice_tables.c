@@ -90,6 +90,13 @@ void lz_lattice_cartesian(lz_lattice_kind kind, int32_t side, const int32_t *p, 
 	}
 }
 
+double lz_lattice_reach(lz_lattice_kind kind, double r)
+{
+	if (lz_lattice_dim(kind) == 0)
+		return 0;
+	return ceil(kind == LZ_LATTICE_TRIANGULAR ? 2.0 * r / sqrt(3.0) : r);
+}
+
 const lz_site *lz_lattice_dirs(lz_lattice_kind kind, int *n)
 {
 	static const struct {

@@ -6,13 +6,6 @@
 #include "lz/error.h"
 #include "lz/shape.h"
 
-/* A reach that bounds every point of S: |x| < r on the square and cubic lattices;
- * on the sheared triangular one x² + xy + y² >= 3x²/4, so |x| < 2r/√3. */
-static double reach_of(lz_lattice_kind kind, double radius)
-{
-	return ceil(kind == LZ_LATTICE_TRIANGULAR ? 2.0 * radius / sqrt(3.0) : radius);
-}
-
 static size_t ipow(size_t b, int e)
 {
 	size_t p = 1;
@@ -33,7 +26,7 @@ lz_shape *lz_shape_alloc(lz_lattice_kind kind, double radius)
 	/* The widest reach whose bounding box stays within LZ_SHAPE_BOX_MAX. */
 	double widest = dim == 2 ? floor((sqrt((double)LZ_SHAPE_BOX_MAX) - 1) / 2)
 	                         : floor((cbrt((double)LZ_SHAPE_BOX_MAX) - 1) / 2);
-	double reach = reach_of(kind, radius);
+	double reach = lz_lattice_reach(kind, radius);
 	if (reach > widest)
 		return lz_error(LZ_EINVAL, "shape radius r = %g lattice units is too large for the "
 		                "%s lattice: its bounding box would pass %zu points; take r <= %g",

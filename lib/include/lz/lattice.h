@@ -59,6 +59,14 @@ double lz_lattice_cell_volume(lz_lattice_kind kind);
  * periods L long). O(1). */
 void lz_lattice_cartesian(lz_lattice_kind kind, int32_t side, const int32_t *p, double c[3]);
 
+/* A bound on every coordinate of a displacement shorter than r on lattice `kind`: if
+ * dist2(dx, dy, dz) < r² then |dx|, |dy|, |dz| <= the bound. ceil(r) on the square and
+ * cubic lattices; ceil(2r/√3) on the sheared triangular one, where x² + xy + y² >=
+ * 3x²/4. The half-width of a shape's bounding box, and the smallest cell side that
+ * keeps pairs closer than r in neighbouring cells (lz/cells.h). 0 for an invalid
+ * kind. O(1). */
+double lz_lattice_reach(lz_lattice_kind kind, double r);
+
 /* The direction table of a lattice (thesis 2.4.1, DIRX/DIRY): *n directions, 4, 8, 6,
  * 6, 18 or 26. Invariant for every kind: the opposite of direction i is direction
  * (i + n/2) mod n, so a reversal is one addition. In 2D the directions go
