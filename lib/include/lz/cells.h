@@ -53,9 +53,10 @@
 
 #include "lz/lattice.h"
 
-/* The most cells a grid may have (2^24): when the cutoff would allow more, the cells
+/* The most cells a grid may have (2^22: 2048² or 161³; the block tables then take
+ * about 280 MB in 2D, 700 MB in 3D): when the cutoff would allow more, the cells
  * are made wider (still correct, a little slower). */
-#define LZ_CELLS_MAX ((size_t)1 << 24)
+#define LZ_CELLS_MAX ((size_t)1 << 22)
 /* The number of the always-empty cell is c->ncells; a block entry naming it is "no
  * cell". */
 
@@ -155,8 +156,8 @@ size_t lz_cells_bytes(const lz_cells *c);
 /* The Morton code of the cell coordinates (x, y, z) (z ignored when dim = 2): bit b
  * of x goes to bit dim·b of the code, bit b of y to bit dim·b + 1, bit b of z to bit
  * 3b + 2. So the cells of any aligned 2^k block get consecutive codes, and (0,0),
- * (1,0), (0,1), (1,1) are 0, 1, 2, 3. Each coordinate < 2^21 (a 64-bit code).
- * O(1) with bit tricks (or O(bits) with a loop). */
+ * (1,0), (0,1), (1,1) are 0, 1, 2, 3. A 64-bit code: in 3D each coordinate < 2^21,
+ * in 2D all 32 bits of x and y count. O(1) with bit tricks (or O(bits) with a loop). */
 uint64_t lz_morton(int dim, uint32_t x, uint32_t y, uint32_t z);
 
 /* The storage index of the cell of lattice site r[0 .. dim-1] (each coordinate in

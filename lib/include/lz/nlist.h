@@ -121,8 +121,8 @@ int lz_nlist_refresh_single(lz_nlist *nl, const int32_t *r);
 
 /* What lz_nlist_audit finds wrong with the list in use. */
 typedef struct {
-	size_t missing;     /* pairs closer than r2 (distance² < r2) that are not listed,
-	                       counted once per pair */
+	size_t missing;     /* pairs closer than r2 (distance² < r2) that are not listed
+	                       on both rows, counted once per pair */
 	size_t beyond;      /* entries at distance² >= rl2 (stale: allowed between
 	                       refreshes, never right after one) */
 	size_t self;        /* entries i on row i */
