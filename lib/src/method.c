@@ -8,6 +8,7 @@ static const lz_method *const lz_registry[] = {
 	&lz_method_walk,
 	&lz_method_lattice_gas,
 	&lz_method_field,
+	&lz_method_nlist,
 };
 
 const lz_method *lz_method_find(const char *name)

@@ -475,36 +475,18 @@ static void summarise_well(const state *st, lz_json *j)
 
 /* ---- plots ---- */
 
-/* config.gp: the disks (2D), or the circles in which the plane z = L/2 cuts the
- * spheres (3D). */
+/* config.gp: the final configuration. */
 static int write_config_plot(const state *st, const lz_run *run)
 {
 	const lz_field *f = st->f;
-	double L = f->side, R = f->radius, top = L * lz_walk_row_spacing(f->kind);
-	FILE *p = lz_run_script(run, "config", "field", "the final configuration", 800,
-	                        (int)(120 + 680 * top / L));
-	if (!p)
-		return LZ_EIO;
-	char well[80] = "";
+	char well[80] = "", title[256];
 	if (st->w)
-		snprintf(well, sizeof well, ", well λ = %g, kT/ε = %g", st->w->range / (2 * R),
+		snprintf(well, sizeof well, ", well λ = %g, kT/ε = %g", st->w->range / (2 * f->radius),
 		         st->w->temperature);
-	fprintf(p, "set size ratio -1\nunset key\nset xrange [0:%g]\nset yrange [0:%g]\n"
-	        "set xlabel 'x [lattice units]'\nset ylabel 'y [lattice units]'\n", L, top);
-	fprintf(p, "set title \"%zu %s, R = %g, %s lattice, θ = %.4f%s%s\"\n", f->n,
-	        f->dim == 2 ? "disks" : "spheres", R, lz_lattice_name(f->kind),
-	        lz_field_coverage(f), st->jammed ? " (jammed)" : "", well);
-	if (f->dim == 2)
-		fprintf(p, "plot 'config.dat' u 1:2:3 w circles fs transparent solid 0.5 "
-		        "lc rgb '#3060c0'\n");
-	else
-		fprintf(p, "set label 1 'slice z = %g' at graph 0.02, graph 1.03\n"
-		        "# the radius of the cut, sqrt(R² - dz²); spheres the plane misses get "
-		        "x = NaN and are skipped\n"
-		        "h(z, r) = abs(z - %g) < r ? sqrt(r * r - (z - %g)**2) : NaN\n"
-		        "plot 'config.dat' u (h($3, $4) == h($3, $4) ? $1 : NaN):2:(h($3, $4)) "
-		        "w circles fs transparent solid 0.5 lc rgb '#3060c0'\n", L / 2, L / 2, L / 2);
-	return lz_run_plot(run, p, "config");
+	snprintf(title, sizeof title, "%zu %s, R = %g, %s lattice, θ = %.4f%s%s", f->n,
+	         f->dim == 2 ? "disks" : "spheres", f->radius, lz_lattice_name(f->kind),
+	         lz_field_coverage(f), st->jammed ? " (jammed)" : "", well);
+	return lz_run_plot_config(run, "field", f->kind, f->side, f->side, title);
 }
 
 /* energy.gp: the energy per particle against the sweeps. */

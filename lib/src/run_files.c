@@ -4,6 +4,7 @@
 
 #include "lz/error.h"
 #include "lz/method.h"
+#include "lz/walk.h"
 
 int lz_run_write_config(const lz_run *run, lz_lattice_kind kind, int32_t side, size_t n,
                         const int32_t *r, double radius)
@@ -64,4 +65,28 @@ int lz_run_plot(const lz_run *run, FILE *f, const char *name)
 		                run->dir->tmp);
 	int status = lz_gnuplot(run->dir->tmp, file);
 	return status == 1 ? LZ_OK : status;
+}
+
+int lz_run_plot_config(const lz_run *run, const char *method, lz_lattice_kind kind,
+                       int32_t side, double window, const char *title)
+{
+	double top = window * lz_walk_row_spacing(kind), mid = side / 2.0;
+	FILE *f = lz_run_script(run, "config", method, "the final configuration", 800,
+	                        (int)(120 + 680 * top / window));
+	if (!f)
+		return LZ_EIO;
+	fprintf(f, "set size ratio -1\nunset key\nset xrange [0:%g]\nset yrange [0:%g]\n"
+	        "set xlabel 'x [lattice units]'\nset ylabel 'y [lattice units]'\n"
+	        "set title \"%s\"\n", window, top, title);
+	if (lz_lattice_dim(kind) == 2)
+		fprintf(f, "plot 'config.dat' u 1:2:3 w circles fs transparent solid 0.5 "
+		        "lc rgb '#3060c0'\n");
+	else
+		fprintf(f, "set label 1 'slice z = %g' at graph 0.02, graph 1.03\n"
+		        "# the radius of the cut, sqrt(R² - dz²); spheres the plane misses get "
+		        "x = NaN and are skipped\n"
+		        "h(z, r) = abs(z - %g) < r ? sqrt(r * r - (z - %g)**2) : NaN\n"
+		        "plot 'config.dat' u (h($3, $4) == h($3, $4) ? $1 : NaN):2:(h($3, $4)) "
+		        "w circles fs transparent solid 0.5 lc rgb '#3060c0'\n", mid, mid, mid);
+	return lz_run_plot(run, f, "config");
 }

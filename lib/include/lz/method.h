@@ -53,6 +53,14 @@ FILE *lz_run_script(const lz_run *run, const char *name, const char *method,
  * skipped); LZ_EIO when the script could not be written or gnuplot failed. */
 int lz_run_plot(const lz_run *run, FILE *f, const char *name);
 
+/* config.gp + config.png in the run directory: the particles of config.dat (as
+ * lz_run_write_config writes it) as circles — disks in 2D, in 3D the circles in which
+ * the plane z = L/2 cuts the spheres — in the window [0, window] × [0, window · h] of a
+ * box of side L (h the row spacing, lz_walk_row_spacing), under `title`. LZ_OK also
+ * without gnuplot; LZ_EIO as lz_run_plot. */
+int lz_run_plot_config(const lz_run *run, const char *method, lz_lattice_kind kind,
+                       int32_t side, double window, const char *title);
+
 /* The method named `name`, or NULL. */
 const lz_method *lz_method_find(const char *name);
 /* All registered methods, in course order; *n gets their number. */
@@ -63,5 +71,6 @@ extern const lz_method lz_method_verlet;
 extern const lz_method lz_method_walk;
 extern const lz_method lz_method_lattice_gas;
 extern const lz_method lz_method_field;
+extern const lz_method lz_method_nlist;
 
 #endif

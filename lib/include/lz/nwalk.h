@@ -22,14 +22,21 @@
  * decide the next step are those closer than
  *     r_c = σ + lmax                       (the interaction range),
  * and the lists hold the pairs closer than r_l = r_c + Δr (skin Δr > 0). A pair that
- * was farther than r_l at a refresh closes in by at most 2·lmax per sweep, so the
- * lists stay safe for
- *     refresh_safe = floor((Δr + lmax) / (2 lmax))   sweeps
- * (at the k-th sweep after the refresh the pair is still at least r_l - (2k - 1)·lmax
- * apart when one of them moves). A longer interval is allowed — it is the trade the
+ * was farther than r_l at a refresh closes in by at most 2·lmax per sweep, so after k
+ * sweeps it is still at least r_l - 2k·lmax apart, and the lists stay safe for
+ *     refresh_safe = floor(Δr / (2 lmax))   sweeps
+ * (0 when Δr < 2 lmax: then no interval is safe). Within it every step is judged
+ * right, and the audit at its end finds nothing. (The steps alone would allow
+ * floor((Δr + lmax) / (2 lmax)), one sweep more for some skins — a pair is at least
+ * r_l - (2k - 1)·lmax apart when one of them moves in the k-th sweep — but the audit
+ * would then count pairs that reached r_c in the last sweep, after every step that
+ * could have misjudged them.) A longer interval is allowed — it is the trade the
  * lesson measures — and its cost is counted: before every refresh the audit (when
  * on) counts the pairs closer than r_c that the driver cannot see (missed_pairs:
- * pairs whose steps it would judge wrongly), and lz_nwalk_overlaps counts the damage.
+ * pairs whose next steps it would judge wrongly; summed over the refreshes, so a pair
+ * missed at three refreshes counts three times), and lz_nwalk_overlaps counts the
+ * damage. The refresh comes as soon as an interval is over, so the schedule does not
+ * depend on how a run is cut into calls of lz_nwalk_run.
  *
  * Cost per sweep: NL O(N²/refresh + N·k); FNL and CL O(N·k); FR O(N·σ^(dim-1)) (the
  * repainted perimeter). The audit is O(N) per refresh and is timed apart.
@@ -83,14 +90,14 @@ typedef struct {
 	double lmax;             /* the longest step */
 	double rc, rl;           /* r_c = σ + lmax and r_l = r_c + Δr (header comment) */
 	int64_t rc2;             /* ceil(r_c²) */
-	int refresh;             /* the interval in use, sweeps */
-	int refresh_safe;        /* floor((Δr + lmax) / (2 lmax)) */
+	int refresh;             /* the interval in use, sweeps; 0 for FR (no refresh) */
+	int refresh_safe;        /* floor(Δr / (2 lmax)); 0 for FR (no lists) */
 	int32_t *r;              /* positions, n·dim (FR: field->r) */
 	lz_nlist *nl;            /* NL, FNL */
-	lz_cells *cells;         /* CL; FNL's first build */
+	lz_cells *cells;         /* CL (FNL's first build bins on a grid of its own) */
 	lz_field *field;         /* FR */
 	lz_cells *truth;         /* the audit's grid, cutoff r_c; also used by renumbering */
-	uint32_t *scratch;       /* n entries (renumbering, the audit) */
+	uint32_t *scratch;       /* n entries: the renumbering's permutation */
 	uint64_t sweeps;         /* sweeps done */
 	uint64_t since;          /* sweeps since the last refresh */
 	uint64_t moves, accepted;
@@ -108,14 +115,22 @@ typedef struct {
  * when: the kind or side is invalid; R <= 0 or 4R > L; n = 0; the skin is not positive
  * and finite (NL, FNL, CL: a zero skin would need a refresh before every step);
  * refresh < 0; r_l > L/2 (NL, FNL) or the box holds fewer than 3 cells of side r_l
- * (CL); RSA jams before n particles (the message gives the packing and the jamming
- * coverage ≈ 0.547 in 2D, 0.38 in 3D); a cell overflows its arrays; no memory.
- * O(L^dim + N). */
+ * (CL); refresh = 0 while refresh_safe = 0 (Δr < 2 lmax: give the interval); renumber
+ * in a box of fewer than 3 cells of side r_c; the placement field would pass
+ * LZ_FIELD_SITES_MAX; RSA jams before n particles (LZ_EPHYS; the message gives the
+ * packing and the jamming coverage ≈ 0.547 in 2D, 0.38 in 3D); a cell overflows its
+ * arrays; no memory. The audit grid (cutoff r_c) is left NULL in a box of fewer than
+ * 3 cells of side r_c: the audit and the overlaps then go over all pairs (a few dozen
+ * particles at most fit such a box). O(L^dim + N). */
 lz_nwalk *lz_nwalk_alloc(const lz_nwalk_params *p, gsl_rng *rng);
+/* The checks of lz_nwalk_alloc that need neither memory nor random numbers (all but
+ * jamming, overflow and memory), for a scene's check before anything runs. LZ_OK or
+ * LZ_EINVAL with the lz_error. O(1). */
+int lz_nwalk_check(const lz_nwalk_params *p);
 void lz_nwalk_free(lz_nwalk *nw);
 
-/* Run `sweeps` sweeps (header comment), refreshing (NL, FNL, CL) every `refresh`
- * sweeps, auditing before each refresh when asked. Adds to the counters and to move_s
+/* Run `sweeps` sweeps (header comment), refreshing (NL, FNL, CL) as soon as `refresh`
+ * sweeps have passed since the last one, auditing before each refresh when asked. Adds to the counters and to move_s
  * and audit_s. LZ_OK, or the status of a failing refresh (LZ_ENOMEM; LZ_EPHYS when a
  * cell overflows its arrays). O(sweeps · cost per sweep). */
 int lz_nwalk_run(lz_nwalk *nw, gsl_rng *rng, uint64_t sweeps);
@@ -133,5 +148,22 @@ size_t lz_nwalk_list_bytes(const lz_nwalk *nw);
 
 /* Atom-steps per second: moves / move_s (0 before any). O(1). */
 double lz_nwalk_speed(const lz_nwalk *nw);
+
+/* ---- for experiments (the lesson's drivers) ---- */
+
+/* Parameters for driver d: n from the packing fraction (rounded; lz_walk_packing),
+ * skin 4, the safe refresh, cells in row order, particles as placed, fixed arrays,
+ * two copies, the audit on. O(1). */
+lz_nwalk_params lz_nwalk_params_for(lz_nwalk_driver d, lz_lattice_kind kind, int64_t side,
+                                    double radius, double packing);
+
+/* lz_nwalk_alloc with an mt19937 generator seeded `seed` for the placement. NULL with
+ * the lz_error of the allocation. */
+lz_nwalk *lz_nwalk_alloc_seeded(const lz_nwalk_params *p, unsigned long seed);
+
+/* `repeats` timed runs of `sweeps` sweeps each, run r from an mt19937 generator seeded
+ * seed + r: ns[r] = CPU ns per atom-step of run r (move_s, the audit excluded). LZ_OK
+ * or the status of lz_nwalk_run. O(repeats · sweeps · cost per sweep). */
+int lz_nwalk_time(lz_nwalk *nw, unsigned long seed, uint64_t sweeps, int repeats, double *ns);
 
 #endif
