@@ -9,7 +9,7 @@
  * CPU ns per atom-step (median of 3) of NL, FNL and CL, and the list entries per
  * particle. A thin skin refreshes often; a thick one tests more candidates at every
  * step (the lists grow as r_l²) and, for FNL, refreshes cost k² per particle. FNL
- * misses pairs below Δr = 24 even at the safe interval (fnl_loss.c: its lists are too
+ * misses pairs below Δr = 32 even at the safe interval (fnl_loss.c: its lists are too
  * short to hold the common neighbours it relies on). Each driver's best skin — the
  * fastest that missed nothing — is printed, and in skin.json.
  *
@@ -176,7 +176,7 @@ int main(int argc, char **argv)
 		best[k] = -1;
 		for (int s = 0; s < NSKIN; s++) {
 			int ok = a[k][s].missed == 0 && a[k][s].overlaps == 0;
-			if (cost_drv[k] != LZ_NWALK_FNL || skin_of[s] >= 24)
+			if (cost_drv[k] != LZ_NWALK_FNL || skin_of[s] >= 32)
 				clean = clean && ok;
 			if (ok && (best[k] < 0 || a[k][s].ns < a[k][best[k]].ns))
 				best[k] = s;
@@ -194,7 +194,7 @@ int main(int argc, char **argv)
 				safe_clean = safe_clean && b[k][r].missed == 0 && b[k][r].overlaps == 0;
 		unsafe_misses = unsafe_misses && b[k][NREF - 1].missed > 0;
 	}
-	printf("  NL and CL at every skin, FNL from skin 24 on, and every run at or below its "
+	printf("  NL and CL at every skin, FNL from skin 32 on, and every run at or below its "
 	       "safe interval miss nothing: %s\n", lz_lesson_check(&L, clean && safe_clean));
 	printf("  refreshing 64 times too late misses pairs: %s\n",
 	       lz_lesson_check(&L, unsafe_misses));

@@ -45,10 +45,11 @@
 #define REPEATS 3
 
 static const int64_t side_of[MAXSIDE] = {1024, 2048, 4096, 8192, 16384, 32768};
-/* Each driver's skin, the fastest safe one in skin.c at N = 4400: NL and FNL 32 (lists
- * of r_l = 57 refreshed every 16 sweeps; FNL needs lists that long to find its
- * newcomers, lesson §9), CL 7 (r_l = 32: cells of 32, re-binned every 3 sweeps); FR
- * has none. */
+/* Each driver's skin, from skin.c at N = 4400: FNL 32, its fastest skin that misses
+ * nothing (shorter lists lose pairs, lesson §10: r_l = 57, refreshed every 16 sweeps);
+ * NL the same lists, so that the two differ only in how they refresh (NL alone would
+ * gain from a thicker skin still); CL 7, at its best (r_l = 32: cells of 32, re-binned
+ * every 3 sweeps); FR has none. */
 static const double skin_of[NDRV] = {32, 32, 7, 0};
 /* Thesis table 2.2, 1000 atom-steps per second on a 433 MHz Alpha (rigid4), at
  * N = 1100, 4400, 17 600, 70 400 (boxes 1024 .. 8192); NL, FNL, CL, FR. */
