@@ -27,7 +27,7 @@ set logscale x
 set xlabel "packing fraction"
 set ylabel "pairs missed per refresh per 1000 disks (+0.001)"
 set xrange [0.008:0.6]
-set yrange [5e-4:10]
+set yrange [5e-4:100]
 set key top right
 plot 'fnl_density.dat' u 1:($3 + 1e-3) w lp lc rgb 0x1f77b4 pt 5 ps 1.2 lw 2 t "FNL, two copies", \
      '' u 1:($4 + 1e-3) w p lc rgb 0xd62728 pt 2 ps 1.6 lw 2 t "NL (all pairs)"

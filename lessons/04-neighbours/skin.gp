@@ -1,4 +1,4 @@
-# caption: The trade (DESIGN §7), measured by skin.c on 4400 hard disks (R = 12, packing 0.474). Left: CPU ns per atom-step against the skin Δr at the safe refresh interval floor((Δr + 1)/2) sweeps — thin skins refresh often, thick ones test more candidates at every step (and FNL pays k² per particle at each refresh); each driver has its own best skin. Right: a work–precision diagram for refreshing later than is safe: FNL and CL at Δr = 4 (safe: 2 sweeps) and Δr = 8 (safe: 4), refreshed every 1 … 24 sweeps (labels); the vertical axis counts, before every refresh, the pairs closer than r_c that the driver cannot see, per 1000 disks. Points on the bottom line missed nothing. Past the safe interval a few per cent of time are bought with pairs walking through each other.
+# caption: The trade (DESIGN §7), measured by skin.c on 4400 hard disks (R = 12, σ = 24, packing 0.474, box 2048), CPU ns per atom-step on a shared 2-core AMD EPYC. Left: the cost against the skin Δr at the safe refresh interval floor(Δr/2) sweeps. NL pays for its all-pairs rebuild and wants a thick skin (16 µs at Δr = 2, 0.28 µs at 64, still falling); FNL is fast and wrong below Δr = 32 (its lists are too short to find newcomers, see fnl_loss) and pays k² per refresh above (80 ns at 32, 138 at 64); CL costs 75–80 ns while r_l ≤ 32 keeps its cells at 32, and doubles each time the cells jump to the next power of two (Δr = 8, 48). Right: a work–precision diagram for refreshing later than is safe — FNL at Δr = 32 (safe: 16 sweeps) and CL at Δr = 7 (safe: 3), refreshed every N sweeps (labels); up: the pairs closer than r_c the driver could not see, counted before every refresh, per 1000 disks (points on the bottom line missed nothing). The safe interval is a worst case: FNL stays clean up to 64 sweeps, 40 % faster; from 128 sweeps on it misses pairs, and disks walk through each other.
 set terminal pngcairo size 1300,540 font "sans,11"
 set output 'skin.png'
 set datafile missing "nan"
@@ -14,9 +14,11 @@ set logscale xy
 set xlabel "skin Δr  [lattice units]"
 set ylabel "CPU ns per atom-step"
 set key top right
-plot for [d = 0:2] 'skin_cost.dat' u 1:(pick(d, $4)) w lp lc rgb rgb(d) pt 7 ps 1.1 lw 2 t name(d)
+plot for [d = 0:2] 'skin_cost.dat' u 1:(pick(d, $4)) w lp lc rgb rgb(d) pt 7 ps 1.1 lw 2 t name(d), \
+     'skin_cost.dat' u 1:(($6 > 0 || $7 > 0) ? $4 : NaN) w p lc rgb "black" pt 2 ps 2 lw 2 t "missed pairs (FNL: lists too short)"
 
 set title "(b) refreshing later: cost against missed pairs"
+set xrange [30:150]
 set xlabel "CPU ns per atom-step"
 set ylabel "pairs missed per refresh per 1000 disks (+0.001)"
 set logscale xy

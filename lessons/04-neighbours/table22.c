@@ -16,7 +16,8 @@
  * per atom-step, so their speed is flat but for the caches (the thesis: 337/397 and
  * 199/216 from 1100 to 70 400). FR does one look-up per step but repaints the
  * perimeter of the excluded disk: flat and slower. Speed: atom-steps per CPU second
- * (the machine is shared), the median of 3 repeats; the fitted exponent α of
+ * (the machine is shared), the median of 3 repeats (one run above 10^5 particles);
+ * the fitted exponent α of
  * speed ∝ N^α for each driver.
  *
  * Usage: table22 OUTDIR [--quick]
@@ -105,25 +106,24 @@ static double neighbours(const lz_nwalk *nw)
 
 /* One driver at one size: REPEATS timed runs of `sweeps` sweeps, each from the
  * generator seeded SEED + 1 + repeat (the same for every driver). */
-static int run_one(cell_run *cr, lz_nwalk_driver d, int64_t side, double steps,
-                   double sz_steps)
+static int run_one(cell_run *cr, lz_nwalk_driver d, int64_t side, double steps)
 {
 	lz_nwalk_params p = params(d, side);
 	lz_nwalk *nw = lz_nwalk_alloc_seeded(&p, SEED);
 	if (!nw)
 		return LZ_EINVAL;
 	cr->n = p.n;
-	/* A multiple of every driver's refresh interval (16 and 3 sweeps), so that the
-	 * drivers that run the same number of sweeps end in the same configuration; NL at
-	 * large N (fewer steps) a multiple of its own 16. */
-	double unit = steps < sz_steps ? 16 : 48;
-	cr->sweeps = lround(unit * ceil(steps / (unit * (double)p.n)));
+	/* The same sweeps for every driver at a size (NL at large N fewer), at least 16 so
+	 * that each timed run refreshes: drivers that run as many sweeps must end in the
+	 * same configuration. */
+	cr->sweeps = lround(fmax(16, round(steps / (double)p.n)));
+	int repeats = p.n > 100000 ? 1 : REPEATS;   /* one run is 18 million steps at 10^6 */
 	double t[REPEATS];
-	int status = lz_nwalk_time(nw, SEED + 1, (uint64_t)cr->sweeps, REPEATS, t);
+	int status = lz_nwalk_time(nw, SEED + 1, (uint64_t)cr->sweeps, repeats, t);
 	if (status == LZ_OK) {
-		gsl_sort(t, 1, REPEATS);
-		cr->speed = 1e9 / gsl_stats_median_from_sorted_data(t, 1, REPEATS);
-		cr->lo = 1e9 / t[REPEATS - 1];
+		gsl_sort(t, 1, (size_t)repeats);
+		cr->speed = 1e9 / gsl_stats_median_from_sorted_data(t, 1, (size_t)repeats);
+		cr->lo = 1e9 / t[repeats - 1];
 		cr->hi = 1e9 / t[0];
 		cr->bytes = (double)lz_nwalk_list_bytes(nw) / (double)p.n;
 		cr->neighbours = neighbours(nw);
@@ -234,7 +234,7 @@ int main(int argc, char **argv)
 			if (d == LZ_NWALK_NL && side_of[s] > sz->nl_max)
 				continue;
 			double steps = d == LZ_NWALK_NL && side_of[s] > 2048 ? sz->nl_steps : sz->steps;
-			if (run_one(&runs[s][d], (lz_nwalk_driver)d, side_of[s], steps, sz->steps) != LZ_OK)
+			if (run_one(&runs[s][d], (lz_nwalk_driver)d, side_of[s], steps) != LZ_OK)
 				return lz_lesson_error(&L);
 			print_row(s, d);
 			fflush(stdout);
