@@ -1,0 +1,297 @@
+/* lz/edmd.h — event-driven molecular dynamics of hard spheres (3D) and hard disks
+ * (2D): particles fly straight between collisions, so the simulation jumps from one
+ * collision to the next, exactly (Miller & Luding, seed 000; DynamO, seed 002).
+ *
+ * Units: the diameter σ = 1, the mass m = 1, and time in σ√(m/kT) (kT = 1 at the
+ * start). Positions in [0, L) on every axis of a box of side L, periodic unless the
+ * axis has walls; in 2D the third coordinate and velocity are 0 and stay 0.
+ *
+ * The state. Each particle carries its own clock (DynamO's "delayed states"): r is
+ * where it was at its time t0, and it has flown straight since, so its position now is
+ * r + v (now - t0) (with gravity, - g (now - t0)²/2 on x). Only the particles an
+ * event involves are brought up to date; everyone else is left alone. Invariants
+ * between events:
+ *     t0(i) <= now <= t_event(i)   for every particle i;
+ *     particle i is in the list of cell p[i].cell, and r(i) at any time up to its
+ *     event lies in that cell (to round-off);
+ *     the heap holds every particle exactly once, keyed by the time of its event.
+ *
+ * One event per particle (Miller & Luding). Particle i keeps only its EARLIEST event
+ * ev[i]: a collision with a partner, a crossing of a face of its cell, or a bounce off
+ * a wall. When i and j collide, their other predicted events become wrong — and so do
+ * the events that others had predicted with i or j. Rather than search for and delete
+ * those, every particle counts its collisions (count); an event with a partner stores
+ * the partner's count at prediction, and when it comes up it is STALE if the partner
+ * has collided since (p[j].count != ev.pcount): the particle then simply predicts
+ * again. Its own count needs no check: whenever i's velocity changes, i is predicted
+ * again and its heap entry replaced.
+ *
+ * Cells. The box is cut into m cells per side, each at least σ wide, so a particle's
+ * partners are in the 3^dim block around its cell (lz/cells.h explains why). A
+ * prediction looks only there and no further than the time the particle leaves its
+ * cell: leaving is itself an event, after which it predicts again among its new
+ * neighbours. Cost per event O(1) at fixed density; Miller & Luding find the fewest
+ * events per second wasted at C/N ≈ 1.5 cells per particle (2D) and ≈ 8 (3D) in a
+ * dilute gas, and as many cells as fit (side σ) in a dense one (lz_edmd_auto_cells).
+ *
+ * Round-off (DynamO). A double holds 16 digits: an absolute time of 10^12 leaves a
+ * resolution of 10^-4 for the events, which is an overlap. So `now` is kept small:
+ * every N events the run brings every particle up to date and subtracts `now` from
+ * every time (lz_edmd_rebase); the time already run is kept apart in t_base.
+ *
+ * Memory: 64 bytes of particle, 8 of event, 16 + 4 of heap, 4 of cell list, and 4 per
+ * cell: about 100 bytes per particle in a dense fluid (lz_edmd_bytes).
+ */
+#ifndef LZ_EDMD_H
+#define LZ_EDMD_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lz/heap.h"
+#include "lz/rng.h"
+
+/* ev.partner of a particle for which nothing will ever happen (at rest, alone). */
+#define LZ_EDMD_NONE INT32_MIN
+/* Faces of a cell: face f = 2·axis + up (up = 1 towards larger coordinates). A face
+ * event is stored as partner = LZ_EDMD_FACE(f) = -1 - f, a negative number. */
+#define LZ_EDMD_FACE(f) (-1 - (int32_t)(f))
+
+/* The densest packings: fcc spheres π/(3√2), triangular disks π/(2√3). */
+#define LZ_EDMD_CLOSE_3D 0.74048048969306104
+#define LZ_EDMD_CLOSE_2D 0.90689968211710892
+
+enum { LZ_EDMD_WALLS_NONE, LZ_EDMD_WALLS_X, LZ_EDMD_WALLS_BOX };
+
+/* A particle: 64 bytes, one cache line. */
+typedef struct {
+	double r[3];     /* position at time t0, σ */
+	double v[3];     /* velocity at time t0, σ per time unit */
+	double t0;       /* the time r and v belong to (the particle's own clock) */
+	uint32_t count;  /* collisions and wall bounces so far: changes whenever v does */
+	uint32_t cell;   /* the cell whose list holds the particle */
+} lz_edmd_particle;
+
+/* A particle's next event; its time is the particle's key in the heap. */
+typedef struct {
+	int32_t partner;  /* >= 0: collision with that particle; LZ_EDMD_FACE(f): leaving
+	                     the cell through face f (or bouncing off the wall there);
+	                     LZ_EDMD_NONE: never */
+	uint32_t pcount;  /* the partner's count when the event was predicted */
+} lz_edmd_event;
+
+typedef struct {
+	int dim;             /* 2 or 3 */
+	size_t n;            /* particles, 1 <= n < 2^31 */
+	double packing;      /* η = n·v1/L^dim, v1 = π/6 (3D) or π/4 (2D); sets L */
+	double restitution;  /* between particles, in (0, 1]; walls are elastic */
+	double gravity;      /* g >= 0 along -x (needs walls on x) */
+	int walls;           /* LZ_EDMD_WALLS_NONE, _X (walls at x = 0 and L), _BOX */
+	int cells;           /* cells per side, 0 = automatic (lz_edmd_auto_cells) */
+} lz_edmd_params;
+
+typedef struct {
+	int dim;
+	size_t n;
+	double L;               /* box side, σ */
+	double restitution;
+	double g;               /* gravity along -x */
+	int wall[3];            /* 1: hard walls at 0 and L on this axis (centres stay in
+	                           [1/2, L - 1/2]); 0: periodic */
+	int m[3];               /* cells per side (m[2] = 1 in 2D); >= 3 when periodic */
+	double w[3];            /* cell side L / m[a] (>= σ) */
+	size_t ncells;          /* m[0]·m[1]·m[2] */
+	int32_t *head;          /* first particle of each cell, -1 when empty */
+	int32_t *next;          /* next particle in the same cell, -1 at the end */
+	lz_edmd_particle *p;    /* n particles */
+	lz_edmd_event *ev;      /* their next events */
+	lz_heap *heap;          /* particle i keyed by the time of ev[i] */
+	double now;             /* the time of the last event, since the last re-base */
+	double t_base;          /* the time at which now was last set to 0 */
+	uint64_t since_rebase;  /* events since then */
+	unsigned sort_every;    /* renumber the particles cell by cell every this many
+	                           re-bases (lz_edmd_sort); 0: never. Default 1 */
+	unsigned rebases;       /* re-bases so far */
+	/* counters since the last lz_edmd_reset_counts (the event loop adds to them) */
+	uint64_t events;        /* heap pops, stale ones included */
+	uint64_t collisions;    /* pair collisions */
+	uint64_t crossings;     /* cell crossings */
+	uint64_t bounces;       /* wall bounces */
+	uint64_t stale;         /* events found stale */
+	double virial;          /* Σ over collisions of r_ij · Δp_i (> 0), σ·momentum */
+	double t_reset;         /* the absolute time of the last reset */
+} lz_edmd;
+
+/* ---- flight: library, inline (the hot loop calls these) ---- */
+
+/* Position and velocity of p at time t (>= p->t0, same time base as now). O(1). */
+static inline void lz_edmd_state(const lz_edmd *e, const lz_edmd_particle *p, double t,
+                                 double r[3], double v[3])
+{
+	double dt = t - p->t0;
+	for (int a = 0; a < 3; a++) {
+		r[a] = p->r[a] + p->v[a] * dt;
+		v[a] = p->v[a];
+	}
+	r[0] -= 0.5 * e->g * dt * dt;
+	v[0] -= e->g * dt;
+}
+
+/* Bring p up to time t: r, v and t0 = t. O(1). */
+static inline void lz_edmd_advance(const lz_edmd *e, lz_edmd_particle *p, double t)
+{
+	lz_edmd_state(e, p, t, p->r, p->v);
+	p->t0 = t;
+}
+
+/* The cells of the block around cell c (c itself included): their indices in nb[]
+ * and, in shift[k], what to add to a position in cell nb[k] to bring it next to
+ * cell c across the periodic boundary (0 or ±L per axis). Cells beyond a wall are
+ * left out. Returns the count (27 in 3D, 9 in 2D, fewer next to walls). O(3^dim). */
+int lz_edmd_block(const lz_edmd *e, uint32_t c, uint32_t nb[27], double shift[27][3]);
+
+/* The cell across face f of cell c, and in *jump what to add to r[f/2] of a particle
+ * that crosses it (±L when it wraps, else 0). Precondition: f is not a wall face.
+ * O(1). */
+uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump);
+
+/* Cell-list bookkeeping: take i out of its cell's list (O(particles in the cell)),
+ * put it at the head of cell c's list and set p[i].cell = c (O(1)). */
+void lz_edmd_cell_remove(lz_edmd *e, uint32_t i);
+void lz_edmd_cell_insert(lz_edmd *e, uint32_t i, uint32_t c);
+
+/* The earliest t >= 0 at which x(t) = x + v t - g t²/2 (g > 0) reaches lo (going
+ * down) or hi (going up), lo <= x <= hi up to round-off; *up = 1 when it is hi.
+ * Numerically stable roots (no difference of nearly equal numbers). O(1). */
+double lz_edmd_fall_time(double x, double v, double g, double lo, double hi, int *up);
+
+/* ---- graded (solutions/05-edmd/edmd.c) ---- */
+
+/* The time until two spheres of diameter 1 touch, dr = r_j - r_i and dv = v_j - v_i
+ * at the same instant (3 components; 0 in z in 2D): the smallest t >= 0 with
+ * |dr + dv t| = 1, or INFINITY when they never touch: receding or moving sideways
+ * (dr·dv >= 0), missing each other, or only grazing (touching with no approach). A
+ * pair already touching (or overlapping by round-off) and approaching collides at
+ * t = 0. The root is computed without cancellation. O(1). */
+double lz_edmd_pair_time(const double dr[3], const double dv[3]);
+
+/* Collide a and b, both at the same time, dr = r_b - r_a (the nearest image, |dr| = 1
+ * up to round-off) with restitution e_r: the velocity components along k = dr/|dr|
+ * change so that the normal relative velocity (v_b - v_a)·k becomes -e_r times
+ * itself; momentum is conserved and the kinetic energy drops by exactly
+ * (1 - e_r²)/4 · ((v_b - v_a)·k)² (nothing when e_r = 1). The tangential components
+ * do not change. Returns the collision's virial r_ab·Δp_a = |dr|·|Δp| (> 0). O(1). */
+double lz_edmd_bounce(lz_edmd_particle *a, lz_edmd_particle *b, const double dr[3],
+                      double restitution);
+
+/* The time until a particle at r with velocity v (both at the same instant, r inside
+ * cell c) leaves the cell through one of its faces, or reaches a wall: on an axis
+ * with walls, the face of an edge cell on the wall side is replaced by the contact
+ * r[a] = 1/2 (or L - 1/2). Axis 0 with gravity: lz_edmd_fall_time. Sets *face to the
+ * face (2·axis + up). Returns a time >= 0 (round-off may put r a hair outside its
+ * cell: that is time 0), or INFINITY when the particle is at rest. O(dim). */
+double lz_edmd_cell_time(const lz_edmd *e, const double r[3], const double v[3], uint32_t c,
+                         int *face);
+
+/* Predict particle i's next event at time now: the earliest of its cell's face time
+ * and its collision times with every particle of the block around its cell (at their
+ * nearest images); store it in ev[i] (with the partner's count) and give i that time
+ * in the heap (push when i is not in it, else update). O(3^dim · particles per cell
+ * + log N). */
+void lz_edmd_predict(lz_edmd *e, uint32_t i);
+
+/* Carry out the earliest event: pop nothing — read the heap's top i and its time t;
+ * count it (events); set now = t;
+ *   - collision with j, stale (j's count changed): count it (stale), predict i again;
+ *   - collision: bring i and j to t, bounce them (add the virial), count the
+ *     collision (both counts + 1), predict i and j again;
+ *   - face of a wall: bring i to t, reverse v[axis], count the bounce (count + 1),
+ *     predict i again;
+ *   - face: bring i to t, move it to the cell across (wrapping r across the periodic
+ *     boundary), count the crossing, predict i again.
+ * Only the one or two particles involved are touched. Returns 0, or -1 (doing
+ * nothing) when the next event is at infinity. O(log N) at fixed density. */
+int lz_edmd_step(lz_edmd *e);
+
+/* ---- set-up and the run (library) ---- */
+
+/* The cells per side Miller & Luding would choose: as many as fit (side >= σ) in a
+ * dense fluid, but no more than about 1.5 per particle in 2D, 8 in 3D, at most
+ * 2^24 cells. 0 when even 3 per side do not fit on a periodic axis. O(1). */
+int lz_edmd_auto_cells(int dim, size_t n, double L);
+
+/* A system for p (checked: dim, n, packing below close packing, restitution in (0,1],
+ * gravity >= 0 and then walls on x, cells >= 3 per periodic side and >= σ wide — a
+ * box too small for three cells per side is refused with the smallest n that fits).
+ * Particles are not placed yet. NULL with lz_error on failure. O(n + cells). */
+lz_edmd *lz_edmd_alloc(const lz_edmd_params *p);
+void lz_edmd_free(lz_edmd *e);
+
+/* Place the particles on a simple cubic (square in 2D) lattice — or fcc in 3D when
+ * the simple cubic one would be closer than σ — on a random subset of its sites,
+ * with Gaussian velocities of zero total momentum scaled to kT = 1; then lz_edmd_start.
+ * LZ_EINVAL when no lattice fits the packing (it says which N would). O(n + cells). */
+int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng);
+
+/* Set the particles from r[i·3 + a], v[i·3 + a] (z components 0 in 2D), then
+ * lz_edmd_start. Refused with LZ_EINVAL naming the particle: a position outside the
+ * box or beyond a wall contact, a NaN, or two particles closer than σ (less 1e-10)
+ * (checked with the cells, O(n)). */
+int lz_edmd_set(lz_edmd *e, const double *r, const double *v);
+
+/* File all particles into their cells, predict every event and fill the heap; now =
+ * 0, t0 = 0 for all, counters reset. O(n log n). */
+void lz_edmd_start(lz_edmd *e);
+
+/* Run events until `events` more have been carried out or the absolute time reaches
+ * t_stop (INFINITY: no limit); at t_stop every particle is brought to t_stop. Re-bases
+ * every max(n, 1024) events and renumbers the particles cell by cell at each re-base.
+ * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: max(n, 1024) events in
+ * less than 1e-12 of the time a particle at the current speed needs to fly 1 σ) or
+ * nothing left to happen. O(events · log N). */
+int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop);
+
+/* Bring every particle to now (t0 = now). O(n). */
+void lz_edmd_sync(lz_edmd *e);
+
+/* lz_edmd_sync, then subtract now from every time (t0, heap keys) and add it to
+ * t_base. The heap order is unchanged. O(n). */
+void lz_edmd_rebase(lz_edmd *e);
+
+/* Renumber the particles cell by cell (cells in row-major order), so that particles
+ * near in space are near in memory; events, partners, heap and lists follow. O(n +
+ * cells). */
+int lz_edmd_sort(lz_edmd *e);
+
+/* The absolute time t_base + now. */
+static inline double lz_edmd_time(const lz_edmd *e) { return e->t_base + e->now; }
+
+/* Set the absolute time to t (the clock reads t; now stays small). O(1). */
+void lz_edmd_set_time(lz_edmd *e, double t);
+
+/* Zero the counters and the virial; t_reset = the absolute time. O(1). */
+void lz_edmd_reset_counts(lz_edmd *e);
+
+/* ---- observables and guards (library) ---- */
+
+/* Kinetic energy Σ v²/2 (with gravity, plus Σ g x: the total energy). O(n). */
+double lz_edmd_energy(const lz_edmd *e);
+/* Total momentum into P[3]. O(n). */
+void lz_edmd_momentum(const lz_edmd *e, double P[3]);
+/* kT = 2 KE / (dim · n), the kinetic energy at now. O(n). */
+double lz_edmd_temperature(const lz_edmd *e);
+
+/* The largest overlap 1 - |r_ij| over all pairs at now (0 when none), with the
+ * cells: O(n). *pi, *pj (may be NULL) get the pair. */
+double lz_edmd_max_overlap(const lz_edmd *e, uint32_t *pi, uint32_t *pj);
+
+/* LZ_OK when the invariants above hold (t0 <= now <= event time, every particle in
+ * the right cell's list and inside that cell to 1e-9, heap valid); else LZ_EDOM with
+ * lz_error naming the particle. O(n + cells). For tests and guards. */
+int lz_edmd_audit(const lz_edmd *e);
+
+/* Bytes of memory per particle: particles, events, heap, lists and cells. O(1). */
+double lz_edmd_bytes(const lz_edmd *e);
+
+#endif

@@ -1,0 +1,272 @@
+/* edmd_run.c — the run of lz/edmd.h around the graded event loop: re-basing the clock,
+ * renumbering the particles cell by cell, the collapse and stall guards, and the
+ * O(n) observables and checks (energy, momentum, temperature, overlaps, invariants). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "lz/edmd.h"
+#include "lz/error.h"
+
+void lz_edmd_sync(lz_edmd *e)
+{
+	for (size_t i = 0; i < e->n; i++)
+		lz_edmd_advance(e, &e->p[i], e->now);
+}
+
+void lz_edmd_rebase(lz_edmd *e)
+{
+	lz_edmd_sync(e);
+	double now = e->now;
+	for (size_t i = 0; i < e->n; i++)
+		e->p[i].t0 = 0;
+	for (size_t k = 0; k < e->heap->n; k++)
+		e->heap->node[k].t -= now;
+	e->t_base += now;
+	e->now = 0;
+	e->since_rebase = 0;
+	e->rebases++;
+}
+
+void lz_edmd_set_time(lz_edmd *e, double t)
+{
+	e->t_reset += t - lz_edmd_time(e);
+	e->t_base = t - e->now;
+}
+
+void lz_edmd_reset_counts(lz_edmd *e)
+{
+	e->events = e->collisions = e->crossings = e->bounces = e->stale = 0;
+	e->virial = 0;
+	e->t_reset = lz_edmd_time(e);
+}
+
+/* Rebuild the cell lists from p[].cell, each list in increasing particle number (so
+ * that sorting an already sorted system changes nothing). */
+static void relink(lz_edmd *e)
+{
+	for (size_t c = 0; c < e->ncells; c++)
+		e->head[c] = -1;
+	for (size_t i = e->n; i-- > 0;)
+		lz_edmd_cell_insert(e, (uint32_t)i, e->p[i].cell);
+}
+
+int lz_edmd_sort(lz_edmd *e)
+{
+	/* The new number of every particle, walking the cells in order. heap->pos is
+	 * rebuilt at the end, so it holds the new numbers meanwhile. */
+	uint32_t *to = e->heap->pos, k = 0;
+	for (size_t c = 0; c < e->ncells; c++)
+		for (int32_t j = e->head[c]; j >= 0; j = e->next[j])
+			to[j] = k++;
+	for (size_t i = 0; i < e->n; i++)
+		if (e->ev[i].partner >= 0)
+			e->ev[i].partner = (int32_t)to[e->ev[i].partner];
+	for (size_t q = 0; q < e->heap->n; q++)
+		e->heap->node[q].id = to[e->heap->node[q].id];
+	/* apply the permutation in place, cycle by cycle: each swap puts one particle
+	 * where it belongs */
+	for (uint32_t i = 0; i < e->n; i++)
+		while (to[i] != i) {
+			uint32_t j = to[i];
+			lz_edmd_particle p = e->p[i];
+			lz_edmd_event ev = e->ev[i];
+			e->p[i] = e->p[j];
+			e->ev[i] = e->ev[j];
+			e->p[j] = p;
+			e->ev[j] = ev;
+			to[i] = to[j];
+			to[j] = j;
+		}
+	for (size_t i = 0; i < e->n; i++)
+		to[i] = LZ_HEAP_NONE;
+	for (size_t q = 0; q < e->heap->n; q++)
+		to[e->heap->node[q].id] = (uint32_t)q;
+	relink(e);
+	return LZ_OK;
+}
+
+/* The time a particle at the current rms speed takes to fly σ (INFINITY at rest). */
+static double flight_time(const lz_edmd *e)
+{
+	double T = lz_edmd_temperature(e);
+	return T > 0 ? 1 / sqrt(e->dim * T) : INFINITY;
+}
+
+/* At a re-base: the clock must have moved by more than a trillionth of a flight time
+ * over the window, or the events pile up at one instant (inelastic collapse). */
+static int check_stall(const lz_edmd *e, uint64_t window)
+{
+	double tau = flight_time(e);
+	if (e->now > 1e-12 * tau)
+		return LZ_OK;
+	return lz_error(LZ_EPHYS,
+	                "inelastic collapse at t = %.10g: %llu events in %.3g time units, "
+	                "less than 1e-12 of the %.3g a particle needs to fly σ (restitution "
+	                "%g); the particles of a cluster collide infinitely often in finite "
+	                "time — raise the restitution",
+	                lz_edmd_time(e), (unsigned long long)window, e->now, tau, e->restitution);
+}
+
+int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
+{
+	uint64_t window = e->n > 1024 ? e->n : 1024;
+	for (uint64_t k = 0; k < events; k++) {
+		if (e->since_rebase >= window) {
+			int st = check_stall(e, window);
+			if (st)
+				return st;
+			lz_edmd_rebase(e);
+			if (e->sort_every && e->rebases % e->sort_every == 0)
+				lz_edmd_sort(e);
+		}
+		if (e->t_base + lz_heap_top_t(e->heap) > t_stop) {
+			e->now = t_stop - e->t_base;
+			lz_edmd_sync(e);
+			return LZ_OK;
+		}
+		if (lz_edmd_step(e) < 0)
+			return lz_error(LZ_EPHYS, "nothing left to happen at t = %.10g: every "
+			                "particle is at rest or alone on its path", lz_edmd_time(e));
+		e->since_rebase++;
+	}
+	return LZ_OK;
+}
+
+/* ---- observables and guards ---- */
+
+double lz_edmd_energy(const lz_edmd *e)
+{
+	double E = 0;
+	for (size_t i = 0; i < e->n; i++) {
+		double r[3], v[3];
+		lz_edmd_state(e, &e->p[i], e->now, r, v);
+		E += 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + e->g * r[0];
+	}
+	return E;
+}
+
+void lz_edmd_momentum(const lz_edmd *e, double P[3])
+{
+	P[0] = P[1] = P[2] = 0;
+	for (size_t i = 0; i < e->n; i++) {
+		double r[3], v[3];
+		lz_edmd_state(e, &e->p[i], e->now, r, v);
+		for (int a = 0; a < 3; a++)
+			P[a] += v[a];
+	}
+}
+
+double lz_edmd_temperature(const lz_edmd *e)
+{
+	double ke = 0;
+	for (size_t i = 0; i < e->n; i++) {
+		double r[3], v[3];
+		lz_edmd_state(e, &e->p[i], e->now, r, v);
+		ke += 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+	}
+	return 2 * ke / (e->dim * (double)e->n);
+}
+
+double lz_edmd_max_overlap(const lz_edmd *e, uint32_t *pi, uint32_t *pj)
+{
+	double worst = 0;
+	uint32_t nb[27];
+	double shift[27][3];
+	for (uint32_t i = 0; i < e->n; i++) {
+		double ri[3], vi[3];
+		lz_edmd_state(e, &e->p[i], e->now, ri, vi);
+		int K = lz_edmd_block(e, e->p[i].cell, nb, shift);
+		for (int k = 0; k < K; k++)
+			for (int32_t j = e->head[nb[k]]; j >= 0; j = e->next[j]) {
+				if ((uint32_t)j <= i)
+					continue;
+				double rj[3], vj[3], d2 = 0;
+				lz_edmd_state(e, &e->p[j], e->now, rj, vj);
+				for (int a = 0; a < 3; a++) {
+					double d = rj[a] + shift[k][a] - ri[a];
+					d2 += d * d;
+				}
+				if (d2 < 1 && 1 - sqrt(d2) > worst) {
+					worst = 1 - sqrt(d2);
+					if (pi)
+						*pi = i;
+					if (pj)
+						*pj = (uint32_t)j;
+				}
+			}
+	}
+	return worst;
+}
+
+/* Particle i's position now lies in its cell (to tol) and inside the walls. */
+static int audit_place(const lz_edmd *e, uint32_t i, double tol)
+{
+	double r[3], v[3];
+	const lz_edmd_particle *p = &e->p[i];
+	lz_edmd_state(e, p, e->now, r, v);
+	uint32_t c = p->cell, cc[3] = {c % (uint32_t)e->m[0], c / (uint32_t)e->m[0] % (uint32_t)e->m[1],
+	                               c / ((uint32_t)e->m[0] * (uint32_t)e->m[1])};
+	for (int a = 0; a < e->dim; a++) {
+		double lo = cc[a] * e->w[a], hi = (cc[a] + 1) * e->w[a];
+		if (e->wall[a]) {
+			lo = fmax(lo, 0.5);
+			hi = fmin(hi, e->L - 0.5);
+		}
+		if (r[a] < lo - tol || r[a] > hi + tol)
+			return lz_error(LZ_EDOM, "particle %u: %c = %.12g at t = %.12g is outside its "
+			                "cell %u, which spans [%.12g, %.12g]", i, "xyz"[a], r[a],
+			                lz_edmd_time(e), c, lo, hi);
+	}
+	return LZ_OK;
+}
+
+static int audit_clocks(const lz_edmd *e, uint32_t i)
+{
+	const lz_edmd_particle *p = &e->p[i];
+	double slack = 1e-12 * fmax(1, fabs(e->now));
+	if (p->t0 > e->now + slack)
+		return lz_error(LZ_EDOM, "particle %u: its clock t0 = %.17g is ahead of now = %.17g",
+		                i, p->t0, e->now);
+	if (!lz_heap_contains(e->heap, i))
+		return lz_error(LZ_EDOM, "particle %u has no event in the heap", i);
+	double t = e->heap->node[e->heap->pos[i]].t;
+	if (t < e->now - slack)
+		return lz_error(LZ_EDOM, "particle %u: its event at %.17g is before now = %.17g", i,
+		                t, e->now);
+	int32_t q = e->ev[i].partner;
+	if (q >= 0 && (size_t)q >= e->n)
+		return lz_error(LZ_EDOM, "particle %u: event partner %d is not a particle", i, q);
+	return LZ_OK;
+}
+
+int lz_edmd_audit(const lz_edmd *e)
+{
+	int st = lz_heap_audit(e->heap);
+	if (st)
+		return st;
+	if (e->heap->n != e->n)
+		return lz_error(LZ_EDOM, "the heap holds %zu events for %zu particles", e->heap->n,
+		                e->n);
+	size_t listed = 0;
+	for (size_t c = 0; c < e->ncells; c++)
+		for (int32_t j = e->head[c]; j >= 0; j = e->next[j]) {
+			if ((size_t)j >= e->n || listed++ > e->n)
+				return lz_error(LZ_EDOM, "cell %zu: its list is broken (entry %d)", c, j);
+			if (e->p[j].cell != c)
+				return lz_error(LZ_EDOM, "particle %d is in the list of cell %zu but says "
+				                "it is in cell %u", j, c, e->p[j].cell);
+		}
+	if (listed != e->n)
+		return lz_error(LZ_EDOM, "the cell lists hold %zu particles, not %zu", listed, e->n);
+	for (uint32_t i = 0; i < e->n; i++)
+		if ((st = audit_clocks(e, i)) || (st = audit_place(e, i, 1e-9)))
+			return st;
+	return LZ_OK;
+}
+
+double lz_edmd_bytes(const lz_edmd *e)
+{
+	double per = sizeof(lz_edmd_particle) + sizeof(lz_edmd_event) + sizeof(lz_heap_node) +
+	             sizeof(uint32_t) /* heap pos */ + sizeof(int32_t) /* next */;
+	return per + (double)e->ncells * sizeof(int32_t) / (double)e->n;
+}
