@@ -7,6 +7,7 @@
 
 #include <gsl/gsl_randist.h>
 
+#include "lz/bigmem.h"
 #include "lz/edmd.h"
 #include "lz/error.h"
 
@@ -26,38 +27,28 @@ static uint32_t cell_index(const lz_edmd *e, const int cc[3])
 	return (uint32_t)cc[0] + (uint32_t)e->m[0] * ((uint32_t)cc[1] + (uint32_t)e->m[1] * (uint32_t)cc[2]);
 }
 
-int lz_edmd_block(const lz_edmd *e, uint32_t c, uint32_t nb[27], double shift[27][3])
+void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b)
 {
-	int cc[3], q[3][3], nq[3];
-	double s[3][3];
+	int cc[3];
 	cell_coords(e, c, cc);
+	uint32_t stride = 1;
 	for (int a = 0; a < 3; a++) {
-		nq[a] = 0;
-		int lo = a < e->dim ? -1 : 0, hi = a < e->dim ? 1 : 0;
-		for (int d = lo; d <= hi; d++) {
+		int k = 0, reach = a < e->dim ? 1 : 0;
+		for (int d = -reach; d <= reach; d++) {
 			int x = cc[a] + d;
 			double sh = 0;
 			if (x < 0 || x >= e->m[a]) {
 				if (e->wall[a])
 					continue;
 				sh = x < 0 ? -e->L : e->L;
-				x = x < 0 ? x + e->m[a] : x - e->m[a];
+				x += x < 0 ? e->m[a] : -e->m[a];
 			}
-			q[a][nq[a]] = x;
-			s[a][nq[a]++] = sh;
+			b->off[a][k] = (uint32_t)x * stride;
+			b->shift[a][k++] = sh;
 		}
+		b->n[a] = k;
+		stride *= (uint32_t)e->m[a];
 	}
-	int k = 0;
-	for (int z = 0; z < nq[2]; z++)
-		for (int y = 0; y < nq[1]; y++)
-			for (int x = 0; x < nq[0]; x++, k++) {
-				int co[3] = {q[0][x], q[1][y], q[2][z]};
-				nb[k] = cell_index(e, co);
-				shift[k][0] = s[0][x];
-				shift[k][1] = s[1][y];
-				shift[k][2] = s[2][z];
-			}
-	return k;
 }
 
 uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump)
@@ -174,10 +165,12 @@ static int choose_cells(const lz_edmd_params *p, double L)
 
 static int alloc_arrays(lz_edmd *e)
 {
-	e->head = malloc(e->ncells * sizeof *e->head);
-	e->next = malloc(e->n * sizeof *e->next);
-	e->p = aligned_alloc(64, ((e->n * sizeof *e->p + 63) / 64) * 64);
-	e->ev = malloc(e->n * sizeof *e->ev);
+	e->head = lz_bigmem_alloc(e->ncells * sizeof *e->head);
+	e->next = lz_bigmem_alloc((e->n + 1) * sizeof *e->next);
+	if (e->next)
+		*e->next++ = -1;  /* the sentinel next[-1] */
+	e->p = lz_bigmem_alloc(e->n * sizeof *e->p);
+	e->ev = lz_bigmem_alloc(e->n * sizeof *e->ev);
 	if (!e->head || !e->next || !e->p || !e->ev)
 		return lz_error(LZ_ENOMEM, "no memory for %zu particles in %zu cells", e->n,
 		                e->ncells);
@@ -228,10 +221,10 @@ void lz_edmd_free(lz_edmd *e)
 {
 	if (!e)
 		return;
-	free(e->head);
-	free(e->next);
-	free(e->p);
-	free(e->ev);
+	lz_bigmem_free(e->head);
+	lz_bigmem_free(e->next ? e->next - 1 : NULL);
+	lz_bigmem_free(e->p);
+	lz_bigmem_free(e->ev);
 	lz_heap_free(e->heap);
 	free(e);
 }
@@ -328,8 +321,12 @@ int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng)
 				for (size_t k = 0; k < sites; k++)
 					idx[k] = k;
 				gsl_ran_choose(rng->gsl, pick, e->n, idx, sites, sizeof *idx);
+				double shift[3];
+				for (int a = 0; a < 3; a++)
+					shift[a] = a < e->dim && !e->wall[a] ? e->L * lz_rng_uniform(rng) : 0;
 				for (size_t i = 0; i < e->n; i++)
-					memcpy(r + 3 * i, site + 3 * pick[i], 3 * sizeof *r);
+					for (int a = 0; a < 3; a++)
+						r[3 * i + a] = site[3 * pick[i] + a] + shift[a];
 				random_velocities(e, rng, v);
 				st = lz_edmd_set(e, r, v);
 			}

@@ -37,6 +37,7 @@ void lz_edmd_reset_counts(lz_edmd *e)
 {
 	e->events = e->collisions = e->crossings = e->bounces = e->stale = 0;
 	e->virial = 0;
+	e->coll_mark = 0;
 	e->t_reset = lz_edmd_time(e);
 }
 
@@ -97,7 +98,7 @@ static double flight_time(const lz_edmd *e)
 static int check_stall(const lz_edmd *e, uint64_t window)
 {
 	double tau = flight_time(e);
-	if (e->now > 1e-12 * tau)
+	if (e->now > 1e-12 * tau || 2 * (e->collisions - e->coll_mark) < window)
 		return LZ_OK;
 	return lz_error(LZ_EPHYS,
 	                "inelastic collapse at t = %.10g: %llu events in %.3g time units, "
@@ -116,6 +117,7 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 			if (st)
 				return st;
 			lz_edmd_rebase(e);
+			e->coll_mark = e->collisions;
 			if (e->sort_every && e->rebases % e->sort_every == 0)
 				lz_edmd_sort(e);
 		}
@@ -170,30 +172,34 @@ double lz_edmd_temperature(const lz_edmd *e)
 double lz_edmd_max_overlap(const lz_edmd *e, uint32_t *pi, uint32_t *pj)
 {
 	double worst = 0;
-	uint32_t nb[27];
-	double shift[27][3];
+	lz_edmd_block b;
 	for (uint32_t i = 0; i < e->n; i++) {
 		double ri[3], vi[3];
 		lz_edmd_state(e, &e->p[i], e->now, ri, vi);
-		int K = lz_edmd_block(e, e->p[i].cell, nb, shift);
-		for (int k = 0; k < K; k++)
-			for (int32_t j = e->head[nb[k]]; j >= 0; j = e->next[j]) {
-				if ((uint32_t)j <= i)
-					continue;
-				double rj[3], vj[3], d2 = 0;
-				lz_edmd_state(e, &e->p[j], e->now, rj, vj);
-				for (int a = 0; a < 3; a++) {
-					double d = rj[a] + shift[k][a] - ri[a];
-					d2 += d * d;
+		lz_edmd_block_of(e, e->p[i].cell, &b);
+		for (int z = 0; z < b.n[2]; z++)
+			for (int y = 0; y < b.n[1]; y++)
+				for (int x = 0; x < b.n[0]; x++) {
+					uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
+					double sh[3] = {b.shift[0][x], b.shift[1][y], b.shift[2][z]};
+					for (int32_t j = e->head[c]; j >= 0; j = e->next[j]) {
+						if ((uint32_t)j <= i)
+							continue;
+						double rj[3], vj[3], d2 = 0;
+						lz_edmd_state(e, &e->p[j], e->now, rj, vj);
+						for (int a = 0; a < 3; a++) {
+							double d = rj[a] + sh[a] - ri[a];
+							d2 += d * d;
+						}
+						if (d2 < 1 && 1 - sqrt(d2) > worst) {
+							worst = 1 - sqrt(d2);
+							if (pi)
+								*pi = i;
+							if (pj)
+								*pj = (uint32_t)j;
+						}
+					}
 				}
-				if (d2 < 1 && 1 - sqrt(d2) > worst) {
-					worst = 1 - sqrt(d2);
-					if (pi)
-						*pi = i;
-					if (pj)
-						*pj = (uint32_t)j;
-				}
-			}
 	}
 	return worst;
 }

@@ -8,21 +8,6 @@
 #include "lz/edmd.h"
 #include "lz/heap.h"
 
-/* LZ_HELPERS_BEGIN */
-/* lz_edmd_pair_time with one branch, for the hot loop of lz_edmd_predict: the square
- * root is taken of max(disc, 0) whatever the case, and the verdict picked at the end,
- * which costs less than the mispredicted branches of the textbook version. */
-static inline double collision_time(const double dr[3], const double dv[3])
-{
-	double b = dr[0] * dv[0] + dr[1] * dv[1] + dr[2] * dv[2];
-	double dv2 = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
-	double c = dr[0] * dr[0] + dr[1] * dr[1] + dr[2] * dr[2] - 1.0;
-	double disc = b * b - dv2 * c;
-	double t = c > 0 ? c / (-b + __builtin_sqrt(disc > 0 ? disc : 0)) : 0.0;
-	return b < 0 && disc > 0 ? t : INFINITY;
-}
-/* LZ_HELPERS_END */
-
 double lz_edmd_pair_time(const double dr[3], const double dv[3])
 {
 	/* Hint: with b = dr·dv, the pair approaches only when b < 0. Solve
@@ -112,12 +97,52 @@ double lz_edmd_cell_time(const lz_edmd *e, const double r[3], const double v[3],
 	/* LZ_SOLUTION_END */
 }
 
+/* LZ_HELPERS_BEGIN */
+/* The earliest collision of particle i (velocity vi at now) with the nc candidates
+ * cand[q], seen from cell from[q] of the block (i's position there: seen[from[q]]),
+ * if earlier than *best: then *best and *ev become it. lz_edmd_pair_time without
+ * branches: the loop's one test (an earlier event) is rarely true. */
+static void earliest(const lz_edmd *e, const int32_t *cand, const uint8_t *from, int nc,
+                     const double seen[][3], const double vi[3], double *best,
+                     lz_edmd_event *ev)
+{
+	const double now = e->now, g = e->g;
+	double first = *best;
+	int32_t who = -1;
+	for (int q = 0; q < nc; q++) {
+		/* j = i gives dr = dv = 0, which never collides */
+		const lz_edmd_particle *pj = &e->p[cand[q]];
+		const double *ro = seen[from[q]];
+		double dt = now - pj->t0;
+		double dv0 = pj->v[0] - g * dt - vi[0], dv1 = pj->v[1] - vi[1], dv2 = pj->v[2] - vi[2];
+		double dr0 = pj->r[0] + (pj->v[0] - 0.5 * g * dt) * dt - ro[0];
+		double dr1 = pj->r[1] + pj->v[1] * dt - ro[1], dr2 = pj->r[2] + pj->v[2] * dt - ro[2];
+		double b = dr0 * dv0 + dr1 * dv1 + dr2 * dv2;
+		double vv = dv0 * dv0 + dv1 * dv1 + dv2 * dv2;
+		double c = dr0 * dr0 + dr1 * dr1 + dr2 * dr2 - 1.0;
+		double disc = b * b - vv * c;
+		/* max(x, 0) = (x + |x|)/2 exactly, without a branch; t = 0 when touching */
+		double t = 0.5 * (c + fabs(c)) / (-b + sqrt(0.5 * (disc + fabs(disc))));
+		if ((b < 0) & (disc > 0) & (t < first)) {
+			first = t;
+			who = q;
+		}
+	}
+	if (who >= 0) {
+		*best = first;
+		ev->partner = cand[who];
+		ev->pcount = e->p[cand[who]].count;
+	}
+}
+/* LZ_HELPERS_END */
+
 void lz_edmd_predict(lz_edmd *e, uint32_t i)
 {
 	/* Hint: get i's position and velocity now (lz_edmd_state). Start from the cell
 	 * time (partner LZ_EDMD_FACE(face), or LZ_EDMD_NONE at infinity). Then for every
-	 * cell of lz_edmd_block(e, p[i].cell, ...) and every j != i in its list
-	 * (head/next), take j's state now, dr = r_j + shift - r_i, dv = v_j - v_i, and
+	 * cell of the block (lz_edmd_block_of(e, p[i].cell, &b): a loop over z, y, x) and
+	 * every j != i in its list (head/next), take j's state now, dr = r_j + shift - r_i
+	 * (the shifts of the cell's three axes), dv = v_j - v_i, and
 	 * keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
 	 * give i the key now + t in the heap (lz_heap_contains: update, else push).
 	 * See §5 "One event per particle". */
@@ -128,27 +153,49 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	int face;
 	double best = lz_edmd_cell_time(e, ri, vi, pi->cell, &face);
 	lz_edmd_event ev = {isinf(best) ? LZ_EDMD_NONE : LZ_EDMD_FACE(face), 0};
-	uint32_t nb[27];
-	double shift[27][3];
-	int nnb = lz_edmd_block(e, pi->cell, nb, shift);
-	const double now = e->now, g = e->g;
-	for (int k = 0; k < nnb; k++) {
-		/* i seen from cell nb[k]: its position moved by -shift, once per cell */
-		const double x = ri[0] - shift[k][0], y = ri[1] - shift[k][1], z = ri[2] - shift[k][2];
-		for (int32_t j = e->head[nb[k]]; j >= 0; j = e->next[j]) {
-			const lz_edmd_particle *pj = &e->p[j];
-			double dt = now - pj->t0;
-			double dv[3] = {pj->v[0] - g * dt - vi[0], pj->v[1] - vi[1], pj->v[2] - vi[2]};
-			double dr[3] = {pj->r[0] + (pj->v[0] - 0.5 * g * dt) * dt - x,
-			                pj->r[1] + pj->v[1] * dt - y, pj->r[2] + pj->v[2] * dt - z};
-			double t = collision_time(dr, dv);
-			if (t < best && (uint32_t)j != i) {
-				best = t;
-				ev.partner = j;
-				ev.pcount = pj->count;
+	/* Three passes, so that the hot loop has almost no branch to mispredict and
+	 * the memory reads of different cells overlap: the heads of the block's cells;
+	 * then their particles, gathered into a list (most cells hold 0, 1 or 2: those
+	 * are read without a data-dependent branch, thanks to the sentinel next[-1] =
+	 * -1); then their collision times (earliest). */
+	lz_edmd_block b;
+	lz_edmd_block_of(e, pi->cell, &b);
+	int32_t head[27], cand[LZ_EDMD_GATHER];
+	uint8_t from[LZ_EDMD_GATHER];
+	double seen[27][3];  /* i's position as seen from each cell of the block */
+	int nk = 0;
+	for (int z = 0; z < b.n[2]; z++)
+		for (int y = 0; y < b.n[1]; y++)
+			for (int x = 0; x < b.n[0]; x++, nk++) {
+				head[nk] = e->head[b.off[0][x] + b.off[1][y] + b.off[2][z]];
+				seen[nk][0] = ri[0] - b.shift[0][x];
+				seen[nk][1] = ri[1] - b.shift[1][y];
+				seen[nk][2] = ri[2] - b.shift[2][z];
 			}
+	int nc = 0;
+	for (int k = 0; k < nk; k++) {
+		if (nc > LZ_EDMD_GATHER - 3) {  /* a crowded block: scan what we have */
+			earliest(e, cand, from, nc, seen, vi, &best, &ev);
+			nc = 0;
+		}
+		int32_t j = head[k];
+		cand[nc] = j;
+		from[nc] = (uint8_t)k;
+		nc += j >= 0;
+		j = e->next[j];
+		cand[nc] = j;
+		from[nc] = (uint8_t)k;
+		nc += j >= 0;
+		for (j = e->next[j]; j >= 0; j = e->next[j]) {
+			if (nc == LZ_EDMD_GATHER) {
+				earliest(e, cand, from, nc, seen, vi, &best, &ev);
+				nc = 0;
+			}
+			cand[nc] = j;
+			from[nc++] = (uint8_t)k;
 		}
 	}
+	earliest(e, cand, from, nc, seen, vi, &best, &ev);
 	e->ev[i] = ev;
 	if (lz_heap_contains(e->heap, i))
 		lz_heap_update(e->heap, i, e->now + best);

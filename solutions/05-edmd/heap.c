@@ -39,8 +39,10 @@ void lz_heap_sift_down(lz_heap *h, size_t k)
 		size_t c = 2 * k + 1;
 		if (c >= n)
 			break;
-		if (c + 1 < n && h->node[c + 1].t < h->node[c].t)
-			c++;
+		/* the earlier child, chosen without a branch (a coin toss the predictor
+		 * would miss half the time): node[c + 1] may be read even when c + 1 = n,
+		 * because the array has a spare node (lz_heap_alloc), and is then ignored */
+		c += (h->node[c + 1].t < h->node[c].t) & (c + 1 < n);
 		if (x.t <= h->node[c].t)
 			break;
 		h->node[k] = h->node[c];

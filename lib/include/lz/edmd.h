@@ -58,6 +58,10 @@
  * event is stored as partner = LZ_EDMD_FACE(f) = -1 - f, a negative number. */
 #define LZ_EDMD_FACE(f) (-1 - (int32_t)(f))
 
+/* Room for the candidates of one prediction (the particles of a block: at most about
+ * 27 · 4 in a dense fluid, far fewer on average). */
+#define LZ_EDMD_GATHER 512
+
 /* The densest packings: fcc spheres π/(3√2), triangular disks π/(2√3). */
 #define LZ_EDMD_CLOSE_3D 0.74048048969306104
 #define LZ_EDMD_CLOSE_2D 0.90689968211710892
@@ -103,7 +107,9 @@ typedef struct {
 	double w[3];            /* cell side L / m[a] (>= σ) */
 	size_t ncells;          /* m[0]·m[1]·m[2] */
 	int32_t *head;          /* first particle of each cell, -1 when empty */
-	int32_t *next;          /* next particle in the same cell, -1 at the end */
+	int32_t *next;          /* next particle in the same cell, -1 at the end; and
+	                           next[-1] = -1, a sentinel: the successor of "no
+	                           particle" is "no particle", so a loop may read it */
 	lz_edmd_particle *p;    /* n particles */
 	lz_edmd_event *ev;      /* their next events */
 	lz_heap *heap;          /* particle i keyed by the time of ev[i] */
@@ -113,6 +119,7 @@ typedef struct {
 	unsigned sort_every;    /* renumber the particles cell by cell every this many
 	                           re-bases (lz_edmd_sort); 0: never. Default 1 */
 	unsigned rebases;       /* re-bases so far */
+	uint64_t coll_mark;     /* collisions at the last re-base (the collapse guard) */
 	/* counters since the last lz_edmd_reset_counts (the event loop adds to them) */
 	uint64_t events;        /* heap pops, stale ones included */
 	uint64_t collisions;    /* pair collisions */
@@ -145,11 +152,20 @@ static inline void lz_edmd_advance(const lz_edmd *e, lz_edmd_particle *p, double
 	p->t0 = t;
 }
 
-/* The cells of the block around cell c (c itself included): their indices in nb[]
- * and, in shift[k], what to add to a position in cell nb[k] to bring it next to
- * cell c across the periodic boundary (0 or ±L per axis). Cells beyond a wall are
- * left out. Returns the count (27 in 3D, 9 in 2D, fewer next to walls). O(3^dim). */
-int lz_edmd_block(const lz_edmd *e, uint32_t c, uint32_t nb[27], double shift[27][3]);
+/* The block of cells around a cell, axis by axis: on axis a the cells at offsets
+ * -1, 0, +1 (n[a] of them: 3, fewer next to a wall, 1 on z in 2D). Cell number
+ *     off[0][x] + off[1][y] + off[2][z]     for x < n[0], y < n[1], z < n[2]
+ * is a cell of the block (27 in 3D, 9 in 2D), and shift[a][.] is what to add on axis a
+ * to a position in that cell to bring it next to the centre cell across the periodic
+ * boundary (0 or ±L). */
+typedef struct {
+	int n[3];
+	uint32_t off[3][3];  /* the cell coordinate times its stride (1, m[0], m[0]·m[1]) */
+	double shift[3][3];
+} lz_edmd_block;
+
+/* Fill b with the block around cell c. O(1). */
+void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b);
 
 /* The cell across face f of cell c, and in *jump what to add to r[f/2] of a particle
  * that crosses it (±L when it wraps, else 0). Precondition: f is not a wall face.
@@ -229,7 +245,9 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p);
 void lz_edmd_free(lz_edmd *e);
 
 /* Place the particles on a simple cubic (square in 2D) lattice — or fcc in 3D when
- * the simple cubic one would be closer than σ — on a random subset of its sites,
+ * the simple cubic one would be closer than σ — shifted by a random vector along the
+ * periodic axes (so that no row of sites sits on a cell face), on a random subset of
+ * its sites,
  * with Gaussian velocities of zero total momentum scaled to kT = 1; then lz_edmd_start.
  * LZ_EINVAL when no lattice fits the packing (it says which N would). O(n + cells). */
 int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng);
@@ -247,9 +265,10 @@ void lz_edmd_start(lz_edmd *e);
 /* Run events until `events` more have been carried out or the absolute time reaches
  * t_stop (INFINITY: no limit); at t_stop every particle is brought to t_stop. Re-bases
  * every max(n, 1024) events and renumbers the particles cell by cell at each re-base.
- * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: max(n, 1024) events in
- * less than 1e-12 of the time a particle at the current speed needs to fly 1 σ) or
- * nothing left to happen. O(events · log N). */
+ * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: max(n, 1024) events,
+ * most of them collisions, in less than 1e-12 of the time a particle at the current
+ * speed needs to fly 1 σ — crossings at one instant, as of a lattice start, are
+ * finite and do not count) or nothing left to happen. O(events · log N). */
 int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop);
 
 /* Bring every particle to now (t0 = now). O(n). */

@@ -40,7 +40,8 @@ typedef struct {
 typedef struct {
 	size_t n;            /* nodes in the heap */
 	size_t cap;          /* items 0 .. cap-1 may be pushed */
-	lz_heap_node *node;  /* node[0 .. n-1] in heap order */
+	lz_heap_node *node;  /* node[0 .. n-1] in heap order; the array has cap + 1 nodes,
+	                        so node[n] can always be read (its value means nothing) */
 	uint32_t *pos;       /* pos[id]: where id is in node[], or LZ_HEAP_NONE */
 } lz_heap;
 
