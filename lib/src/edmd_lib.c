@@ -260,7 +260,7 @@ static size_t lattice_sites(const lz_edmd *e, int M, const double (*basis)[3], i
 	return k;
 }
 
-static void random_velocities(lz_edmd *e, lz_rng *rng, double *v)
+void lz_edmd_maxwell(const lz_edmd *e, lz_rng *rng, double *v)
 {
 	double P[3] = {0, 0, 0}, ke = 0;
 	for (size_t i = 0; i < e->n; i++)
@@ -325,9 +325,11 @@ int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng)
 				for (int a = 0; a < 3; a++)
 					shift[a] = a < e->dim && !e->wall[a] ? e->L * lz_rng_uniform(rng) : 0;
 				for (size_t i = 0; i < e->n; i++)
-					for (int a = 0; a < 3; a++)
-						r[3 * i + a] = site[3 * pick[i] + a] + shift[a];
-				random_velocities(e, rng, v);
+					for (int a = 0; a < 3; a++) {
+						double x = site[3 * pick[i] + a] + shift[a];
+						r[3 * i + a] = x < e->L ? x : x - e->L;
+					}
+				lz_edmd_maxwell(e, rng, v);
 				st = lz_edmd_set(e, r, v);
 			}
 			free(idx);
@@ -364,7 +366,10 @@ static int set_one(lz_edmd *e, size_t i, const double *r, const double *v)
 			return lz_error(LZ_EINVAL, "particle %zu: %c = %.10g is beyond the wall "
 			                "contacts [0.5, %.10g]", i, "xyz"[a], x, e->L - 0.5);
 		if (!e->wall[a] && a < e->dim) {
-			x -= e->L * floor(x / e->L);
+			if (!(x >= -1e-12 && x <= e->L + 1e-12))
+				return lz_error(LZ_EINVAL, "particle %zu: %c = %.10g is outside the box "
+				                "[0, L = %.10g)", i, "xyz"[a], x, e->L);
+			x -= e->L * floor(x / e->L);  /* a hair outside: round-off, wrapped */
 			if (x >= e->L)
 				x = 0;
 		}

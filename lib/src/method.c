@@ -9,6 +9,7 @@ static const lz_method *const lz_registry[] = {
 	&lz_method_lattice_gas,
 	&lz_method_field,
 	&lz_method_nlist,
+	&lz_method_edmd,
 };
 
 const lz_method *lz_method_find(const char *name)

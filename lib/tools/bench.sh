@@ -7,8 +7,11 @@
 # summary.json it takes the speed figures (steps_per_s, atomsteps_per_s, and any
 # other *_per_s), state_bytes_per_particle (or _per_site) and wall_s, and reports the median over the
 # repeats: a table on stdout and BUILD/bench/NN-name.json per stage (the stage is the
-# NN- prefix of the scene name), with the machine and the date. Benchmarks measure
-# speed only; correctness is the tests' job.
+# NN- prefix of the scene name), with the machine and the date; BUILD/bench/NN-name.tsv
+# holds the same rows as a table, a column per key. A stage that has a plot script
+# lib/tools/bench-NN-name.gp gets BUILD/bench/NN-name.png when gnuplot is installed:
+# the script is given table, out (the PNG) and the cache sizes l2, l3 in bytes (0 when
+# unknown). Benchmarks measure speed only; correctness is the tests' job.
 set -euo pipefail
 
 if [ $# != 1 ]; then
@@ -40,6 +43,23 @@ json_num() {
 speed_keys() { sed -n 's/^[[:space:]]*"\([a-z_]*_per_s\)".*/\1/p' "$1"; }
 # The memory figure of a summary: state_bytes_per_particle, _per_site, ...
 bytes_keys() { sed -n 's/^[[:space:]]*"\(state_bytes_per_[a-z]*\)".*/\1/p' "$1"; }
+# Bytes of the level-$1 data (or unified) cache of cpu0: sysfs, else getconf, else 0.
+cache_bytes() {
+	local d size
+	for d in /sys/devices/system/cpu/cpu0/cache/index*; do
+		[ -r "$d/level" ] || continue
+		[ "$(cat "$d/level")" = "$1" ] || continue
+		[ "$(cat "$d/type" 2>/dev/null)" != Instruction ] || continue
+		size=$(cat "$d/size" 2>/dev/null)
+		case $size in
+		*K) echo $((${size%K} * 1024)) && return ;;
+		*M) echo $((${size%M} * 1048576)) && return ;;
+		[0-9]*) echo "$size" && return ;;
+		esac
+	done
+	size=$(getconf "LEVEL${1}_CACHE_SIZE" 2>/dev/null || true)
+	if [[ $size =~ ^[0-9]+$ ]]; then echo "$size"; else echo 0; fi
+}
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print ""; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 json_str() { printf '"%s"' "$(printf '%s' "$1" | sed 's/\\/\\\\/g; s/"/\\"/g')"; }
 
@@ -133,6 +153,35 @@ cut -f1 "$results" | sort -u | while read -r nn; do
 		printf '  ]\n}\n'
 	} >"$file"
 	echo "bench: wrote $file"
+	# the same rows as a table: scene, then a column per key (NaN where a row has none)
+	awk -F '\t' -v nn="$nn" '
+		function put(word,   eq, k) {
+			eq = index(word, "="); k = substr(word, 1, eq - 1)
+			if (!(k in seen)) { seen[k] = 1; cols[++nc] = k }
+			val[rows, k] = substr(word, eq + 1)
+		}
+		$1 == nn {
+			scene[++rows] = $2
+			nw = split($3, w, " ")
+			for (i = 1; i <= nw; i++) put(w[i])
+			for (i = 4; i <= NF; i++) put($i)
+		}
+		END {
+			printf "scene"; for (c = 1; c <= nc; c++) printf "\t%s", cols[c]; print ""
+			for (r = 1; r <= rows; r++) {
+				printf "%s", scene[r]
+				for (c = 1; c <= nc; c++) printf "\t%s", (r, cols[c]) in val && val[r, cols[c]] != "" ? val[r, cols[c]] : "NaN"
+				print ""
+			}
+		}' "$results" >"$out/$name.tsv"
+	plot=lib/tools/bench-$name.gp
+	if [ -f "$plot" ] && command -v gnuplot >/dev/null 2>&1; then
+		if gnuplot -e "table='$out/$name.tsv'; out='$out/$name.png'; l2=$(cache_bytes 2); l3=$(cache_bytes 3)" "$plot" </dev/null 2>"$out/$name.plot.log"; then
+			echo "bench: wrote $out/$name.png"
+		else
+			echo "bench.sh: $plot failed: $(head -3 "$out/$name.plot.log")" >&2
+		fi
+	fi
 done
 echo "machine: $cpu, $cores cores; $when; median of $repeats runs each"
 if [ "$failed" != 0 ]; then

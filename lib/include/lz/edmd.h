@@ -253,10 +253,15 @@ void lz_edmd_free(lz_edmd *e);
 int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng);
 
 /* Set the particles from r[i·3 + a], v[i·3 + a] (z components 0 in 2D), then
- * lz_edmd_start. Refused with LZ_EINVAL naming the particle: a position outside the
- * box or beyond a wall contact, a NaN, or two particles closer than σ (less 1e-10)
- * (checked with the cells, O(n)). */
+ * lz_edmd_start. Refused with LZ_EINVAL naming the particle: a position outside
+ * [0, L) on a periodic axis (beyond 1e-12, which is wrapped as round-off) or beyond a
+ * wall contact, a NaN, or two particles closer than σ (less 1e-10) (checked with the
+ * cells, O(n)). */
 int lz_edmd_set(lz_edmd *e, const double *r, const double *v);
+
+/* Maxwell velocities into v (3 per particle, z = 0 in 2D): Gaussian, the total
+ * momentum removed (n > 1), scaled to kT = 1 exactly. O(n). */
+void lz_edmd_maxwell(const lz_edmd *e, lz_rng *rng, double *v);
 
 /* File all particles into their cells, predict every event and fill the heap; now =
  * 0, t0 = 0 for all, counters reset. O(n log n). */

@@ -67,11 +67,36 @@ typedef struct {
  * blocks >= 2. O(blocks · (events log n + n)). */
 int lz_edmd_blocks(lz_edmd *e, size_t blocks, uint64_t events, lz_edmd_result *r);
 
+/* lz_edmd_blocks with blocks of a duration instead, and something to watch. A block
+ * ends after `events` events or `duration` of simulated time, whichever comes first
+ * (a time-limited block brings every particle to its end); within a block, after
+ * every `every` events and at its end (guards done), observe(e, arg) is called at now
+ * — it may read e, not change it, and its time is not in cpu_s; an error it returns
+ * stops the run. Cutting the run at the observations changes nothing in the
+ * trajectory. lz_edmd_blocks(e, b, k, r) is the plan {k, INFINITY, 0, NULL, NULL}. */
+typedef struct {
+	uint64_t events;     /* per block; UINT64_MAX: no limit */
+	double duration;     /* per block; INFINITY: no limit (one of the two is finite) */
+	uint64_t every;      /* events between observations; 0: at block ends only */
+	int (*observe)(const lz_edmd *e, void *arg);  /* NULL: nothing to watch */
+	void *arg;
+} lz_edmd_plan;
+int lz_edmd_blocks_plan(lz_edmd *e, size_t blocks, const lz_edmd_plan *plan,
+                        lz_edmd_result *r);
+
+/* The reference Z(η) of the hard-sphere (dim 3) or hard-disk (dim 2) fluid: the
+ * Padé-resummed virial series (and in 2D the simulated η = 0.698) of the course
+ * reference (§1-2), interpolated through Z/Z_CS (Z/Z_Henderson) between the tabulated
+ * packings, 1 at η = 0; beyond the table, Carnahan-Starling (Henderson), which is no
+ * longer the stable phase there. *source (may be NULL) names which: "table" or
+ * "carnahan-starling" / "henderson". O(1). */
+double lz_edmd_z_reference(int dim, double packing, const char **source);
+
 /* ---- on request ---- */
 
 /* Add the distances of all pairs closer than rmax (<= L/2) at now to h (bins over
  * [a, b) with b <= rmax; pairs counted once), scanning the cells within rmax. Returns
- * LZ_OK, or LZ_EINVAL when rmax > L/2. O(n · (rmax/w)^dim). */
+ * LZ_OK, or LZ_EINVAL when rmax > L/2 or h reaches beyond rmax. O(n · (rmax/w)^dim). */
 int lz_edmd_gr_add(const lz_edmd *e, double rmax, gsl_histogram *h);
 
 /* g(r) of bin k of h after `samples` calls of lz_edmd_gr_add on a system of n

@@ -61,6 +61,14 @@ int lz_run_plot(const lz_run *run, FILE *f, const char *name);
 int lz_run_plot_config(const lz_run *run, const char *method, lz_lattice_kind kind,
                        int32_t side, double window, const char *title);
 
+/* config.gp + config.png for particles off the lattice: the disks of diameter σ = 1
+ * centred on columns 1, 2 of config.dat (σ units) — in 3D the circles in which the
+ * plane z = L/2 cuts the spheres of column 3 — in the window [0, window]² of a box of
+ * side L, under `title`. upright = 1 draws x upwards (so that gravity along -x points
+ * down). LZ_OK also without gnuplot; LZ_EIO as lz_run_plot. */
+int lz_run_plot_disks(const lz_run *run, const char *method, int dim, double L,
+                      double window, int upright, const char *title);
+
 /* The method named `name`, or NULL. */
 const lz_method *lz_method_find(const char *name);
 /* All registered methods, in course order; *n gets their number. */
@@ -72,5 +80,6 @@ extern const lz_method lz_method_walk;
 extern const lz_method lz_method_lattice_gas;
 extern const lz_method lz_method_field;
 extern const lz_method lz_method_nlist;
+extern const lz_method lz_method_edmd;
 
 #endif
