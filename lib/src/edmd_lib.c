@@ -103,7 +103,7 @@ double lz_edmd_fall_time(double x, double v, double g, double lo, double hi, int
 int lz_edmd_auto_cells(int dim, size_t n, double L)
 {
 	double most = floor(L);  /* cells no narrower than σ */
-	double per = dim == 3 ? 8.0 : 1.5;
+	double per = dim == 3 ? 3.0 : 1.5;  /* lesson 05 §6: as fast as 8 here, fewer bytes */
 	double want = ceil(pow(per * (double)n, 1.0 / dim));
 	double cap = floor(pow((double)((size_t)1 << 27), 1.0 / dim));
 	double m = fmin(fmin(most, fmax(want, 3)), cap);

@@ -90,25 +90,29 @@ static int guard(const lz_edmd *e, const series *s, lz_edmd_result *r)
 	return LZ_OK;
 }
 
-/* One block of the plan: run it in pieces of `every` events with an observation
- * after each but the last; *cpu gets the CPU time of the runs. */
-static int run_block(lz_edmd *e, const lz_edmd_plan *plan, double *cpu)
+/* One block of the plan: run it in pieces of `every` events, or up to the fixed
+ * observation times *t_obs (advanced here), with an observation after each but the
+ * last; *cpu gets the CPU time of the runs. */
+static int run_block(lz_edmd *e, const lz_edmd_plan *plan, double *t_obs, double *cpu)
 {
 	double t_stop = lz_edmd_time(e) + plan->duration;
 	uint64_t left = plan->events;
 	for (;;) {
-		uint64_t piece = plan->every && plan->every < left ? plan->every : left;
+		int timed = plan->interval > 0 && *t_obs < t_stop;
+		uint64_t piece = !timed && plan->every && plan->every < left ? plan->every : left;
 		uint64_t before = e->events;
 		double t0 = lz_cpu_now();
-		int st = lz_edmd_run(e, piece, t_stop);
+		int st = lz_edmd_run(e, piece, timed ? *t_obs : t_stop);
 		*cpu += lz_cpu_now() - t0;
 		if (st)
 			return st;
 		uint64_t done = e->events - before;
 		if (plan->events != UINT64_MAX)
-			left -= piece;
-		if (left == 0 || done < piece)  /* the count, or t_stop, is reached */
+			left -= done;
+		if (left == 0 || (!timed && done < piece))  /* the count, or t_stop, is reached */
 			return LZ_OK;
+		if (timed)
+			*t_obs += plan->interval;
 		if (plan->observe && (st = plan->observe(e, plan->arg)))
 			return st;
 	}
@@ -137,10 +141,11 @@ int lz_edmd_blocks_plan(lz_edmd *e, size_t blocks, const lz_edmd_plan *plan,
 	s.E0 = lz_edmd_energy(e);
 	lz_edmd_momentum(e, s.P0);
 	int st = LZ_OK;
+	double t_obs = lz_edmd_time(e) + plan->interval;
 	size_t done = 0;  /* blocks measured */
 	while (done < blocks && st == LZ_OK) {
 		lz_edmd_reset_counts(e);
-		st = run_block(e, plan, &r->cpu_s);
+		st = run_block(e, plan, &t_obs, &r->cpu_s);
 		if (st)
 			break;
 		lz_edmd_sample b = lz_edmd_measure(e);
@@ -166,7 +171,7 @@ int lz_edmd_blocks_plan(lz_edmd *e, size_t blocks, const lz_edmd_plan *plan,
 
 int lz_edmd_blocks(lz_edmd *e, size_t blocks, uint64_t events, lz_edmd_result *r)
 {
-	lz_edmd_plan plan = {events, INFINITY, 0, NULL, NULL};
+	lz_edmd_plan plan = {events, INFINITY, 0, NULL, NULL, 0};
 	return lz_edmd_blocks_plan(e, blocks, &plan, r);
 }
 

@@ -361,6 +361,8 @@ typedef struct {
 	uint64_t track_every;    /* events between track updates */
 	uint64_t base, seen;     /* events of the finished blocks; e->events at the last call */
 	uint64_t next_sample, next_track;  /* the event counts of the next ones */
+	double interval;         /* with g(r): time between samples (lz_edmd_plan) */
+	double next_time;        /* with g(r): the time of the next sample */
 	gsl_histogram *gr;       /* observe = gr */
 	size_t gr_samples;
 	lz_edmd_track *track;    /* observe = msd */
@@ -409,7 +411,8 @@ static int watch_sample(watch *w, double t, int with_gr)
 }
 
 /* The observer of lz_edmd_blocks_plan: the track follows every `track_every` events,
- * the samples are taken every `sample` events, the progress line moves. */
+ * the samples are taken every `sample` events (with g(r): at fixed times about as far
+ * apart, so that no sample sits on a collision), the progress line moves. */
 static int watch_observe(const lz_edmd *e, void *arg)
 {
 	watch *w = arg;
@@ -421,9 +424,14 @@ static int watch_observe(const lz_edmd *e, void *arg)
 		w->next_track = done + w->track_every;
 		lz_edmd_track_update(w->track, e);
 	}
-	if (done >= w->next_sample) {
+	int due = w->gr && w->interval > 0
+	              ? lz_edmd_time(e) >= w->next_time - 1e-9 * w->interval
+	              : done >= w->next_sample;
+	if (due) {
 		while (w->next_sample <= done)  /* on a fixed grid of `sample` events */
 			w->next_sample += w->sample;
+		while (w->next_time <= lz_edmd_time(e) + 1e-9 * w->interval)
+			w->next_time += w->interval;
 		int status = watch_sample(w, lz_edmd_time(e), 1);
 		if (status != LZ_OK)
 			return status;
@@ -469,6 +477,11 @@ static int watch_begin(const lz_scene *s, lz_edmd *e, const lz_run *run, watch *
 	 * per particle is a fraction of a cell for all but the fastest */
 	w->track_every = w->sample < e->n / 8 + 1 ? w->sample : e->n / 8 + 1;
 	w->next_track = w->track_every;
+	/* g(r) is sampled at fixed times (lz_edmd_plan says why), `sample` events per
+	 * particle apart at the event rate of the equilibration */
+	double rate = (double)e->events / (lz_edmd_time(e) - e->t_reset);
+	w->interval = rate > 0 && isfinite(rate) ? (double)(w->track ? w->track_every : w->sample) / rate : 0;
+	w->next_time = lz_edmd_time(e) + w->interval;
 	char title[240];
 	if (w->observe & OBS_GR) {
 		w->gr = gsl_histogram_alloc((size_t)lz_scene_int(s, "gr_bins"));
@@ -544,7 +557,7 @@ static int equilibrate(const lz_scene *s, lz_edmd *e, int quiet)
 static int measure(const lz_scene *s, lz_edmd *e, watch *w, lz_edmd_result *r)
 {
 	size_t blocks = (size_t)lz_scene_int(s, "blocks");
-	lz_edmd_plan plan = {UINT64_MAX, INFINITY, 0, NULL, NULL};
+	lz_edmd_plan plan = {UINT64_MAX, INFINITY, 0, NULL, NULL, 0};
 	double total;
 	if (lz_scene_has(s, "time")) {
 		plan.duration = lz_scene_real(s, "time") / (double)blocks;
@@ -562,6 +575,8 @@ static int measure(const lz_scene *s, lz_edmd *e, watch *w, lz_edmd_result *r)
 		plan.every = w->track ? w->track_every : w->sample;
 		if (!w->quiet && plan.every > PROGRESS_EVENTS)
 			plan.every = PROGRESS_EVENTS;
+		if (w->gr)
+			plan.interval = w->interval;
 	}
 	if (!w->quiet)
 		lz_progress_begin(&w->bar, "edmd", total);

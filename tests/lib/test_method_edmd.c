@@ -119,7 +119,7 @@ LZ_TEST(edmd_plan_observes_without_changing_the_run)
 	lz_edmd *b = system_of(2, 400, 0.4, LZ_EDMD_WALLS_NONE, 5, 10);
 	lz_edmd_result ra, rb;
 	int calls = 0;
-	lz_edmd_plan plan = {3000, INFINITY, 7, count_calls, &calls};
+	lz_edmd_plan plan = {3000, INFINITY, 7, count_calls, &calls, 0};
 	ck_assert(lz_edmd_blocks(a, 4, 3000, &ra) == LZ_OK);
 	ck_assert_msg(lz_edmd_blocks_plan(b, 4, &plan, &rb) == LZ_OK, "%s", lz_error_message());
 	ck_assert_msg(calls == 4 * 429, "3000 events in pieces of 7 is 428 observations and one "
@@ -131,7 +131,7 @@ LZ_TEST(edmd_plan_observes_without_changing_the_run)
 	for (size_t i = 0; i < a->n; i++)
 		ck_assert(memcmp(a->p[i].r, b->p[i].r, sizeof a->p[i].r) == 0);
 	/* blocks of 0.25 τ */
-	lz_edmd_plan timed = {UINT64_MAX, 0.25, 0, NULL, NULL};
+	lz_edmd_plan timed = {UINT64_MAX, 0.25, 0, NULL, NULL, 0};
 	double t0 = lz_edmd_time(b);
 	ck_assert(lz_edmd_blocks_plan(b, 4, &timed, &rb) == LZ_OK);
 	ck_assert_msg(fabs(rb.time - 1) < 1e-9 && fabs(lz_edmd_time(b) - t0 - 1) < 1e-9,
@@ -170,7 +170,7 @@ LZ_TEST(edmd_guards_report_energy_and_overlap)
 {
 	lz_edmd *e = system_of(3, 500, 0.3, LZ_EDMD_WALLS_NONE, 7, 5);
 	lz_edmd_result r;
-	lz_edmd_plan plan = {2000, INFINITY, 1000, bump_energy, NULL};
+	lz_edmd_plan plan = {2000, INFINITY, 1000, bump_energy, NULL, 0};
 	ck_assert_msg(lz_edmd_blocks_plan(e, 3, &plan, &r) == LZ_EPHYS, "an energy drift of "
 	              "1e-3 must stop the run");
 	ck_assert_msg(strstr(lz_error_message(), "energy"), "%s", lz_error_message());
@@ -434,8 +434,11 @@ LZ_TEST(edmd_observations_write_their_files)
 	const char *run = lzt_path(dir, "run");
 	char *gr = lzt_slurp(lzt_path(run, "gr.dat"), NULL), *msd = lzt_slurp(lzt_path(run, "msd.dat"), NULL);
 	ck_assert_msg(gr && msd, "observe = gr,msd must write gr.dat and msd.dat");
-	ck_assert_msg(lzt_num(j, "gr_samples") == 10, "40 events per particle sampled every 4: "
-	              "10 samples, got %g", lzt_num(j, "gr_samples"));
+	/* g(r) is sampled at fixed times, about 4 events per particle apart at the event
+	 * rate of the equilibration: 10 samples, give or take the rate's fluctuation */
+	double ns = lzt_num(j, "gr_samples");
+	ck_assert_msg(ns >= 8 && ns <= 12, "40 events per particle sampled about every 4: "
+	              "about 10 samples, got %g", ns);
 	double contact = lzt_num(j, "gr_contact"), ref = lzt_num(j, "contact_value_ref");
 	ck_assert_msg(fabs(contact / ref - 1) < 0.1, "g(σ) from the histogram %g, from the "
 	              "reference EoS %g", contact, ref);

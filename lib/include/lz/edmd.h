@@ -32,7 +32,9 @@
  * cell: leaving is itself an event, after which it predicts again among its new
  * neighbours. Cost per event O(1) at fixed density; Miller & Luding find the fewest
  * events per second wasted at C/N ≈ 1.5 cells per particle (2D) and ≈ 8 (3D) in a
- * dilute gas, and as many cells as fit (side σ) in a dense one (lz_edmd_auto_cells).
+ * dilute gas, and as many cells as fit (side σ) in a dense one; in 3D this engine's
+ * minimum is broad (C/N 3 to 10 within the noise, lesson 05 §6) and
+ * lz_edmd_auto_cells takes 3, which needs fewer bytes.
  *
  * Round-off (DynamO). A double holds 16 digits: an absolute time of 10^12 leaves a
  * resolution of 10^-4 for the events, which is an overlap. So `now` is kept small:
@@ -233,8 +235,9 @@ int lz_edmd_step(lz_edmd *e);
 /* ---- set-up and the run (library) ---- */
 
 /* The cells per side Miller & Luding would choose: as many as fit (side >= σ) in a
- * dense fluid, but no more than about 1.5 per particle in 2D, 8 in 3D, at most
- * 2^24 cells. 0 when even 3 per side do not fit on a periodic axis. O(1). */
+ * dense fluid, but no more than about 1.5 per particle in 2D, 3 in 3D (as fast as
+ * Miller & Luding's 8 within the noise for this engine, lesson 05 §6), at most
+ * 2^27 cells. 0 when even 3 per side do not fit on a periodic axis. O(1). */
 int lz_edmd_auto_cells(int dim, size_t n, double L);
 
 /* A system for p (checked: dim, n, packing below close packing, restitution in (0,1],

@@ -1,0 +1,33 @@
+# caption: Is an event O(1)? (DynamO's scaling figure, measured by scaling.c.) Events (filled) and collisions (open) per CPU second against N for hard spheres (red) and disks (blue) at η = 0.3, the particles renumbered cell by cell at every re-base (solid; lz_edmd_sort, in the engine's cell order) or shuffled once at the start and never renumbered (dashed). Top axis: the memory of the 3D system at lz_edmd_bytes ≈ 100 bytes per particle; dotted: where it outgrows the L2 (and the L3, when in range) cache as the machine reports them. The work per event is O(1) (plus a heap of log₂N levels), but the time is not: once the heap, the particles and the cell lists no longer fit in the cache, an event waits for memory. Renumbering the particles cell by cell hardly helps here (at most 1.2 times): at 1.7 cells per particle a prediction reads only about 16 neighbours, and the misses that dominate are the heap's — a sift walks log₂N levels of a 16 MB array at random — and the particle whose event it is, wherever it lies. The events per collision (1.76 in 3D, 2.17 in 2D) are the same at every N: the work per unit of physics is O(1). On a shared virtual machine the L3 it reports is the host's, not what one core gets.
+set terminal pngcairo size 900,600 font "sans,11"
+set output 'scaling.png'
+load 'scaling_cache.gp'
+set grid xtics ytics mxtics lc rgb "#e8e8e8"
+set key font "sans,10" samplen 3 opaque box lc rgb "#cccccc" bottom left
+set logscale xy
+set format x "10^{%T}"
+set format y "10^{%T}"
+set xrange [700:1.5e6]
+set xlabel "particles N"
+set ylabel "per CPU second"
+stats 'scaling.dat' u ($2 == 3 ? $6 : NaN) nooutput name "B"
+bytes = B_mean
+set x2range [700 * bytes / 1048576 : 1.5e6 * bytes / 1048576]
+set logscale x2
+set x2tics
+set format x2 "%g"
+set x2label "memory of the 3D system, MiB"
+set title "Event-driven hard particles at η = 0.3: speed against N"
+set arrow 1 from L2 / bytes, graph 0 to L2 / bytes, graph 1 nohead dt 3 lw 2 lc rgb "#555555"
+set label 1 sprintf("L2 %.3g MiB", L2 / 1048576) at L2 / bytes, graph 0.96 left offset 0.5,0 font "sans,9"
+if (L3 / bytes < 1.5e6) {
+	set arrow 2 from L3 / bytes, graph 0 to L3 / bytes, graph 1 nohead dt 3 lw 2 lc rgb "#555555"
+	set label 2 sprintf("L3 %.3g MiB", L3 / 1048576) at L3 / bytes, graph 0.96 left offset 0.5,0 font "sans,9"
+}
+sel(d, s) = ($2 == d && $3 == s) ? 1 : 0
+plot 'scaling.dat' u 1:(sel(3, 1) ? $4 : NaN) w lp lc rgb 0xd62728 pt 7 lw 2 t "3D events, sorted", \
+     '' u 1:(sel(3, 0) ? $4 : NaN) w lp lc rgb 0xd62728 pt 7 dt 2 lw 1.5 t "3D events, shuffled", \
+     '' u 1:(sel(3, 1) ? $5 : NaN) w lp lc rgb 0xd62728 pt 6 lw 2 t "3D collisions, sorted", \
+     '' u 1:(sel(2, 1) ? $4 : NaN) w lp lc rgb 0x1f77b4 pt 5 lw 2 t "2D events, sorted", \
+     '' u 1:(sel(2, 0) ? $4 : NaN) w lp lc rgb 0x1f77b4 pt 5 dt 2 lw 1.5 t "2D events, shuffled", \
+     '' u 1:(sel(2, 1) ? $5 : NaN) w lp lc rgb 0x1f77b4 pt 4 lw 2 t "2D collisions, sorted"
