@@ -430,7 +430,7 @@ static int watch_observe(const lz_edmd *e, void *arg)
 	if (due) {
 		while (w->next_sample <= done)  /* on a fixed grid of `sample` events */
 			w->next_sample += w->sample;
-		while (w->next_time <= lz_edmd_time(e) + 1e-9 * w->interval)
+		while (w->interval > 0 && w->next_time <= lz_edmd_time(e) + 1e-9 * w->interval)
 			w->next_time += w->interval;
 		int status = watch_sample(w, lz_edmd_time(e), 1);
 		if (status != LZ_OK)
