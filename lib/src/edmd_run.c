@@ -111,6 +111,9 @@ static int check_stall(const lz_edmd *e, uint64_t window)
 int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 {
 	uint64_t window = e->n > 1024 ? e->n : 1024;
+	if (t_stop < lz_edmd_time(e))
+		return lz_error(LZ_EINVAL, "t_stop = %.17g is before the clock, %.17g: a run "
+		                "cannot go back in time", t_stop, lz_edmd_time(e));
 	for (uint64_t k = 0; k < events; k++) {
 		if (e->since_rebase >= window) {
 			int st = check_stall(e, window);

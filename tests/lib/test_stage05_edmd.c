@@ -781,3 +781,23 @@ LZ_TEST(edmd_audit_finds_hand_broken_states)
 	lz_edmd_free(e);
 }
 END_TEST
+
+/* A run told to stop before the clock refuses: bringing every particle back to t_stop
+ * would undo collisions and leave overlaps. */
+LZ_TEST(edmd_run_refuses_to_go_back_in_time)
+{
+	lz_edmd *e = lattice(3, 500, 0.3, LZ_EDMD_WALLS_NONE, 1);
+	ck_assert(lz_edmd_run(e, 1000000, 2.0) == LZ_OK);
+	double t = lz_edmd_time(e);
+	ck_assert_msg(fabs(t - 2.0) < 1e-12, "a run to t_stop = 2 ended at %.17g", t);
+	int st = lz_edmd_run(e, 10, 1.0);
+	ck_assert_msg(st == LZ_EINVAL && strstr(lz_error_message(), "before the clock"),
+	              "lz_edmd_run(t_stop = 1) at t = 2 gave status %d (%s); it must refuse",
+	              st, lz_error_message());
+	ck_assert_msg(lz_edmd_time(e) == t && lz_edmd_audit(e) == LZ_OK &&
+	                      lz_edmd_max_overlap(e, NULL, NULL) == 0,
+	              "the refused run changed the system: t = %.17g, %s", lz_edmd_time(e),
+	              lz_error_message());
+	lz_edmd_free(e);
+}
+END_TEST

@@ -208,7 +208,8 @@ double lz_edmd_bounce(lz_edmd_particle *a, lz_edmd_particle *b, const double dr[
  * with walls, the face of an edge cell on the wall side is replaced by the contact
  * r[a] = 1/2 (or L - 1/2). Axis 0 with gravity: lz_edmd_fall_time. Sets *face to the
  * face (2·axis + up). Returns a time >= 0 (round-off may put r a hair outside its
- * cell: that is time 0), or INFINITY when the particle is at rest. O(dim). */
+ * cell: that is time 0), or INFINITY when the particle is at rest without gravity.
+ * O(dim). */
 double lz_edmd_cell_time(const lz_edmd *e, const double r[3], const double v[3], uint32_t c,
                          int *face);
 
@@ -273,6 +274,7 @@ void lz_edmd_start(lz_edmd *e);
 /* Run events until `events` more have been carried out or the absolute time reaches
  * t_stop (INFINITY: no limit); at t_stop every particle is brought to t_stop. Re-bases
  * every max(n, 1024) events and renumbers the particles cell by cell at each re-base.
+ * LZ_EINVAL when t_stop is before the clock (time does not run backwards).
  * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: max(n, 1024) events,
  * most of them collisions, in less than 1e-12 of the time a particle at the current
  * speed needs to fly 1 σ — crossings at one instant, as of a lattice start, are
