@@ -69,14 +69,6 @@ static const sizes quick = {30, 150};
 
 static size_t n_of(int dim) { return dim == 3 ? 4000 : 4096; }
 
-/* Carnahan–Starling (3D) or Henderson (2D). */
-static double z_closed(int dim, double eta)
-{
-	if (dim == 3)
-		return (1 + eta + eta * eta - eta * eta * eta) / pow(1 - eta, 3);
-	return (1 + eta * eta / 8) / ((1 - eta) * (1 - eta));
-}
-
 /* One state point: melted from the lattice, measured in blocks. */
 static int measure(const state *s, const sizes *sz, lz_edmd_result *r, double *cpu_total)
 {
@@ -111,8 +103,8 @@ static int write_reference(lz_lesson *L)
 		/* Z_ref only where it is tabulated (lz_edmd_z_reference: "table") */
 		const char *s3, *s2;
 		double z3 = lz_edmd_z_reference(3, eta, &s3), z2 = lz_edmd_z_reference(2, eta, &s2);
-		double row[5] = {eta, s3[0] == 't' ? z3 : NAN, eta <= 0.5 ? z_closed(3, eta) : NAN,
-		                 s2[0] == 't' && eta <= 0.65 ? z2 : NAN, z_closed(2, eta)};
+		double row[5] = {eta, s3[0] == 't' ? z3 : NAN, eta <= 0.5 ? lz_edmd_z_closed(3, eta) : NAN,
+		                 s2[0] == 't' && eta <= 0.65 ? z2 : NAN, lz_edmd_z_closed(2, eta)};
 		lz_data_row(d, row);
 	}
 	return lz_data_close(d);
@@ -168,7 +160,7 @@ int main(int argc, char **argv)
 		       s->zref_err, dev_ref, dev_id, (double)r.events / r.cpu_s, cpu,
 		       lz_lesson_check(&L, fabs(dev_ref) <= 1 && fabs(dev_id) <= 1));
 		double row[14] = {s->dim, s->eta, r.Z, r.Z_err, r.Z_gamma, r.Z_gamma_err, zref,
-		                  s->zref_err, z_closed(s->dim, s->eta), r.gamma, r.gamma_err,
+		                  s->zref_err, lz_edmd_z_closed(s->dim, s->eta), r.gamma, r.gamma_err,
 		                  (double)r.events / r.cpu_s, r.max_overlap, r.energy_rel_drift};
 		lz_data_row(d, row);
 	}

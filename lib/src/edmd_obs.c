@@ -193,6 +193,11 @@ static double z_henderson(double x)
 	return (1 + x * x / 8) / ((1 - x) * (1 - x));
 }
 
+double lz_edmd_z_closed(int dim, double packing)
+{
+	return dim == 3 ? z_cs(packing) : z_henderson(packing);
+}
+
 double lz_edmd_z_reference(int dim, double packing, const char **source)
 {
 	const double *eta = dim == 3 ? eta3 : eta2, *z = dim == 3 ? z3 : z2;

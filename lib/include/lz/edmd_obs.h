@@ -101,6 +101,10 @@ int lz_edmd_blocks_plan(lz_edmd *e, size_t blocks, const lz_edmd_plan *plan,
  * "carnahan-starling" / "henderson". O(1). */
 double lz_edmd_z_reference(int dim, double packing, const char **source);
 
+/* The closed forms beside it: Carnahan-Starling (dim 3), (1 + η + η² - η³)/(1 - η)³,
+ * or Henderson (dim 2), (1 + η²/8)/(1 - η)². O(1). */
+double lz_edmd_z_closed(int dim, double packing);
+
 /* ---- on request ---- */
 
 /* Add the distances of all pairs closer than rmax (<= L/2) at now to h (bins over
