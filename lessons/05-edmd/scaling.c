@@ -10,7 +10,10 @@
  * near in memory. The engine renumbers the particles cell by cell at every re-base
  * (sort_every = 1, lz_edmd_sort, in its default cell order); switched off (sort_every
  * = 0), a long run ends up with its particles scattered in memory — here they are
- * shuffled at the start, which is where an unsorted run drifts to.
+ * shuffled at the start, which is where an unsorted run drifts to. From
+ * LZ_EDMD_FAR particles on the loop prefetches (lz_edmd.prefetch: the next event's
+ * cells and particles, the candidates of a prediction, the heap's lower levels); the
+ * sorted system is timed once more with that switched off, on the same state.
  *
  * Hard spheres (3D) and disks (2D) at η = 0.3, N = 10^3 .. 10^6 (10^5 at the demo
  * size), automatic cells, melted from the lattice, then timed in three stretches
@@ -131,9 +134,10 @@ static int timed(lz_edmd *e, uint64_t events, speed *s)
 	return LZ_OK;
 }
 
-/* N particles in dim dimensions: melted, then timed numbered cell by cell (s[0]) and
- * shuffled (s[1]). */
-static int measure(int dim, size_t n, const sizes *sz, lz_rng *rng, speed s[2])
+/* N particles in dim dimensions: melted, then timed numbered cell by cell (s[0]),
+ * the same without prefetching (s[2]; NAN below LZ_EDMD_FAR, where it is off anyway)
+ * and shuffled (s[1]). */
+static int measure(int dim, size_t n, const sizes *sz, lz_rng *rng, speed s[3])
 {
 	lz_edmd_params p = {dim, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
 	lz_edmd *e = lz_edmd_alloc(&p), *u = lz_edmd_alloc(&p);
@@ -149,6 +153,12 @@ static int measure(int dim, size_t n, const sizes *sz, lz_rng *rng, speed s[2])
 	uint64_t events = (uint64_t)fmax(sz->events_min, sz->per_n * (double)n);
 	if (st == LZ_OK)
 		st = timed(e, events, &s[0]);
+	s[2] = (speed){NAN, NAN, NAN, NAN};
+	if (st == LZ_OK && e->prefetch) {
+		e->prefetch = 0;
+		st = timed(e, events, &s[2]);
+		e->prefetch = 1;
+	}
 	if (st == LZ_OK) {
 		lz_edmd_sync(e);
 		gsl_permutation_init(perm);
@@ -203,9 +213,9 @@ int main(int argc, char **argv)
 	                            "packing 0.3: speed against N", 7, names, units);
 	if (!d)
 		return lz_lesson_error(&L);
-	speed res[2][NSIZES][2];
-	printf("  dim         N   B/part      MiB   events/s sorted  shuffled   collisions/s "
-	       "sorted\n");
+	speed res[2][NSIZES][3];
+	printf("  dim         N   B/part      MiB   events/s sorted  shuffled  no prefetch   "
+	       "collisions/s sorted\n");
 	for (int dd = 0; dd < 2; dd++) {
 		int dim = 3 - dd;
 		for (int k = 0; k < sz->sizes; k++) {
@@ -216,8 +226,9 @@ int main(int argc, char **argv)
 				return lz_lesson_error(&L);
 			}
 			double mib = s[0].bytes * (double)n_of[k] / 1048576;
-			printf("  %dD %9zu %8.1f %8.2f %15.3g %9.3g %14.3g\n", dim, n_of[k],
-			       s[0].bytes, mib, s[0].ev_per_s, s[1].ev_per_s, s[0].coll_per_s);
+			printf("  %dD %9zu %8.1f %8.2f %15.3g %9.3g %12.3g %14.3g\n", dim, n_of[k],
+			       s[0].bytes, mib, s[0].ev_per_s, s[1].ev_per_s, s[2].ev_per_s,
+			       s[0].coll_per_s);
 		}
 	}
 	lz_rng_free(rng);
@@ -252,9 +263,11 @@ int main(int argc, char **argv)
 		       lz_lesson_check(&L, cache_ratio[dd] <= MAX_CACHE_RATIO));
 		slow[dd] = res[dd][0][0].ev_per_s / res[dd][last][0].ev_per_s;
 		printf("  %dD: beyond the cache, at N = %zu: %.3g events/s, %.2f times slower than at "
-		       "N = %zu; sorted %.2f times as fast as shuffled (measured, not checked)\n",
+		       "N = %zu; sorted %.2f times as fast as shuffled, prefetching %.2f times as "
+		       "fast as not (measured, not checked)\n",
 		       3 - dd, n_of[last], res[dd][last][0].ev_per_s, slow[dd], n_of[0],
-		       res[dd][last][0].ev_per_s / res[dd][last][1].ev_per_s);
+		       res[dd][last][0].ev_per_s / res[dd][last][1].ev_per_s,
+		       res[dd][last][0].ev_per_s / res[dd][last][2].ev_per_s);
 	}
 
 	lz_json *j = lz_lesson_json(&L, "scaling.json");
@@ -272,6 +285,10 @@ int main(int argc, char **argv)
 		lz_json_num(j, key, res[dd][last][0].ev_per_s);
 		snprintf(key, sizeof key, "events_per_s_%dd_N%zu_shuffled", 3 - dd, n_of[last]);
 		lz_json_num(j, key, res[dd][last][1].ev_per_s);
+		snprintf(key, sizeof key, "events_per_s_%dd_N%zu_no_prefetch", 3 - dd, n_of[last]);
+		lz_json_num(j, key, res[dd][last][2].ev_per_s);
+		snprintf(key, sizeof key, "collisions_per_s_%dd_N%zu", 3 - dd, n_of[last]);
+		lz_json_num(j, key, res[dd][last][0].coll_per_s);
 		snprintf(key, sizeof key, "slowdown_%dd_N%zu", 3 - dd, n_of[last]);
 		lz_json_num(j, key, slow[dd]);
 	}

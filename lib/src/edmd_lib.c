@@ -51,6 +51,22 @@ void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b)
 	}
 }
 
+void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c)
+{
+	int cc[3];
+	cell_coords(e, c, cc);
+	int ry = e->dim > 1, rz = e->dim > 2;
+	/* a row's three cells span at most two cache lines: its first and last cells;
+	 * wrapping on a wall axis only fetches a line that is not needed */
+	for (int dz = -rz; dz <= rz; dz++)
+		for (int dy = -ry; dy <= ry; dy++) {
+			int row[3] = {0, (cc[1] + dy + e->m[1]) % e->m[1], (cc[2] + dz + e->m[2]) % e->m[2]};
+			uint32_t base = cell_index(e, row);
+			__builtin_prefetch(&e->head[base + (uint32_t)((cc[0] + e->m[0] - 1) % e->m[0])]);
+			__builtin_prefetch(&e->head[base + (uint32_t)((cc[0] + 1) % e->m[0])]);
+		}
+}
+
 uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump)
 {
 	int cc[3], a = f / 2;
@@ -197,6 +213,7 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p)
 	e->restitution = p->restitution;
 	e->g = p->gravity;
 	e->sort_every = 1;
+	e->prefetch = p->n >= LZ_EDMD_FAR;
 	for (int a = 0; a < 3; a++) {
 		e->wall[a] = a < p->dim && (p->walls == LZ_EDMD_WALLS_BOX ||
 		                            (a == 0 && p->walls == LZ_EDMD_WALLS_X));

@@ -108,6 +108,27 @@ static int check_stall(const lz_edmd *e, uint64_t window)
 	                lz_edmd_time(e), (unsigned long long)window, e->now, tau, e->restitution);
 }
 
+/* Before an event: ask for what it and the next one will read. Event by event the
+ * loop jumps to random places in memory, and each prediction waits on a chain of
+ * misses (cell head, list, particle); these prefetches let the chains of the two
+ * partners and of the next event overlap. The next event is most likely that of one
+ * of the root's children. A hint only: nothing is written. */
+static void fetch_ahead(const lz_edmd *e)
+{
+	const lz_heap *h = e->heap;
+	uint32_t i = lz_heap_top(h);
+	int32_t j = e->ev[i].partner;
+	lz_edmd_prefetch_block(e, e->p[i].cell);
+	if (j >= 0) {
+		lz_edmd_prefetch_block(e, e->p[j].cell);
+		__builtin_prefetch(&h->node[h->pos[j]]);
+	}
+	for (size_t q = 1; q <= 2 && q < h->n; q++) {
+		__builtin_prefetch(&e->p[h->node[q].id]);
+		__builtin_prefetch(&e->ev[h->node[q].id]);
+	}
+}
+
 int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 {
 	uint64_t window = e->n > 1024 ? e->n : 1024;
@@ -129,6 +150,8 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 			lz_edmd_sync(e);
 			return LZ_OK;
 		}
+		if (e->prefetch)
+			fetch_ahead(e);
 		if (lz_edmd_step(e) < 0)
 			return lz_error(LZ_EPHYS, "nothing left to happen at t = %.10g: every "
 			                "particle is at rest or alone on its path", lz_edmd_time(e));

@@ -98,24 +98,31 @@ double lz_edmd_cell_time(const lz_edmd *e, const double r[3], const double v[3],
 }
 
 /* LZ_HELPERS_BEGIN */
-/* The earliest collision of particle i (velocity vi at now) with the nc candidates
+/* The earliest collision of particle self (velocity vi at now) with the nc candidates
  * cand[q], seen from cell from[q] of the block (i's position there: seen[from[q]]),
  * if earlier than *best: then *best and *ev become it. lz_edmd_pair_time without
- * branches: the loop's one test (an earlier event) is rarely true. */
-static void earliest(const lz_edmd *e, const int32_t *cand, const uint8_t *from, int nc,
-                     const double seen[][3], const double vi[3], double *best,
-                     lz_edmd_event *ev)
+ * branches: the loop's one test (an earlier event) is rarely true. fall is a constant
+ * at each call (the function is always inlined), so that without gravity the compiler
+ * drops the fall terms: walls and gravity cost nothing when a scene has none. */
+static inline __attribute__((always_inline)) void
+earliest(const lz_edmd *e, int32_t self, const int32_t *cand, const uint8_t *from, int nc,
+         const double seen[][3], const double vi[3], double *best, lz_edmd_event *ev,
+         int fall)
 {
 	const double now = e->now, g = e->g;
 	double first = *best;
 	int32_t who = -1;
 	for (int q = 0; q < nc; q++) {
-		/* j = i gives dr = dv = 0, which never collides */
 		const lz_edmd_particle *pj = &e->p[cand[q]];
 		const double *ro = seen[from[q]];
 		double dt = now - pj->t0;
-		double dv0 = pj->v[0] - g * dt - vi[0], dv1 = pj->v[1] - vi[1], dv2 = pj->v[2] - vi[2];
-		double dr0 = pj->r[0] + (pj->v[0] - 0.5 * g * dt) * dt - ro[0];
+		double x0 = pj->r[0] + pj->v[0] * dt, u0 = pj->v[0];  /* as lz_edmd_state */
+		if (fall) {
+			x0 -= 0.5 * g * dt * dt;
+			u0 -= g * dt;
+		}
+		double dv0 = u0 - vi[0], dv1 = pj->v[1] - vi[1], dv2 = pj->v[2] - vi[2];
+		double dr0 = x0 - ro[0];
 		double dr1 = pj->r[1] + pj->v[1] * dt - ro[1], dr2 = pj->r[2] + pj->v[2] * dt - ro[2];
 		double b = dr0 * dv0 + dr1 * dv1 + dr2 * dv2;
 		double vv = dv0 * dv0 + dv1 * dv1 + dv2 * dv2;
@@ -123,7 +130,9 @@ static void earliest(const lz_edmd *e, const int32_t *cand, const uint8_t *from,
 		double disc = b * b - vv * c;
 		/* max(x, 0) = (x + |x|)/2 exactly, without a branch; t = 0 when touching */
 		double t = 0.5 * (c + fabs(c)) / (-b + sqrt(0.5 * (disc + fabs(disc))));
-		if ((b < 0) & (disc > 0) & (t < first)) {
+		/* i is among the candidates: excluded here rather than by a branch in the
+		 * gathering, and never trusted to give exactly dr = dv = 0 */
+		if ((b < 0) & (disc > 0) & (t < first) & (cand[q] != self)) {
 			first = t;
 			who = q;
 		}
@@ -133,6 +142,16 @@ static void earliest(const lz_edmd *e, const int32_t *cand, const uint8_t *from,
 		ev->partner = cand[who];
 		ev->pcount = e->p[cand[who]].count;
 	}
+}
+
+static void scan(const lz_edmd *e, int32_t self, const int32_t *cand, const uint8_t *from,
+                 int nc, const double seen[][3], const double vi[3], double *best,
+                 lz_edmd_event *ev)
+{
+	if (e->g > 0)
+		earliest(e, self, cand, from, nc, seen, vi, best, ev, 1);
+	else
+		earliest(e, self, cand, from, nc, seen, vi, best, ev, 0);
 }
 /* LZ_HELPERS_END */
 
@@ -153,49 +172,55 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	int face;
 	double best = lz_edmd_cell_time(e, ri, vi, pi->cell, &face);
 	lz_edmd_event ev = {isinf(best) ? LZ_EDMD_NONE : LZ_EDMD_FACE(face), 0};
-	/* Three passes, so that the hot loop has almost no branch to mispredict and
-	 * the memory reads of different cells overlap: the heads of the block's cells;
-	 * then their particles, gathered into a list (most cells hold 0, 1 or 2: those
-	 * are read without a data-dependent branch, thanks to the sentinel next[-1] =
-	 * -1); then their collision times (earliest). */
+	/* The block's particles are gathered into a list breadth first, then scanned
+	 * by earliest, so that the hot loops have almost no branch to mispredict and
+	 * the memory reads of different cells overlap instead of waiting on each
+	 * other: the heads of all the cells; the second particle of every cell (the
+	 * sentinel next[-1] = -1 makes that read safe for an empty cell, and no branch
+	 * depends on it); then the rare third and later ones. In a big system
+	 * (e->prefetch) the candidates' records are requested before the scan reads
+	 * them. See §12 "Where the time goes". */
 	lz_edmd_block b;
 	lz_edmd_block_of(e, pi->cell, &b);
-	int32_t head[27], cand[LZ_EDMD_GATHER];
+	int32_t first[27], second[27], cand[LZ_EDMD_GATHER];
 	uint8_t from[LZ_EDMD_GATHER];
 	double seen[27][3];  /* i's position as seen from each cell of the block */
 	int nk = 0;
 	for (int z = 0; z < b.n[2]; z++)
 		for (int y = 0; y < b.n[1]; y++)
 			for (int x = 0; x < b.n[0]; x++, nk++) {
-				head[nk] = e->head[b.off[0][x] + b.off[1][y] + b.off[2][z]];
+				first[nk] = e->head[b.off[0][x] + b.off[1][y] + b.off[2][z]];
 				seen[nk][0] = ri[0] - b.shift[0][x];
 				seen[nk][1] = ri[1] - b.shift[1][y];
 				seen[nk][2] = ri[2] - b.shift[2][z];
 			}
 	int nc = 0;
 	for (int k = 0; k < nk; k++) {
-		if (nc > LZ_EDMD_GATHER - 3) {  /* a crowded block: scan what we have */
-			earliest(e, cand, from, nc, seen, vi, &best, &ev);
-			nc = 0;
-		}
-		int32_t j = head[k];
-		cand[nc] = j;
+		second[k] = e->next[first[k]];
+		cand[nc] = first[k];
 		from[nc] = (uint8_t)k;
-		nc += j >= 0;
-		j = e->next[j];
-		cand[nc] = j;
+		nc += first[k] >= 0;
+		cand[nc] = second[k];
 		from[nc] = (uint8_t)k;
-		nc += j >= 0;
-		for (j = e->next[j]; j >= 0; j = e->next[j]) {
-			if (nc == LZ_EDMD_GATHER) {
-				earliest(e, cand, from, nc, seen, vi, &best, &ev);
+		nc += second[k] >= 0;
+	}
+	if (e->prefetch)
+		for (int q = 0; q < nc; q++)
+			__builtin_prefetch(&e->p[cand[q]]);
+	for (int k = 0; k < nk; k++) {
+		if (second[k] < 0)
+			continue;
+		for (int32_t j = e->next[second[k]]; j >= 0; j = e->next[j]) {
+			if (nc == LZ_EDMD_GATHER) {  /* a crowded block: scan what we have */
+				scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev);
 				nc = 0;
 			}
+			__builtin_prefetch(&e->p[j]);
 			cand[nc] = j;
 			from[nc++] = (uint8_t)k;
 		}
 	}
-	earliest(e, cand, from, nc, seen, vi, &best, &ev);
+	scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev);
 	e->ev[i] = ev;
 	if (lz_heap_contains(e->heap, i))
 		lz_heap_update(e->heap, i, e->now + best);
@@ -257,7 +282,7 @@ int lz_edmd_step(lz_edmd *e)
 	}
 	int f = -1 - ev.partner, a = f / 2, up = f % 2;
 	lz_edmd_advance(e, pi, t);
-	uint32_t c = pi->cell, ca = a == 0 ? c % (uint32_t)e->m[0]
+	uint32_t c = e->p[i].cell, ca = a == 0 ? c % (uint32_t)e->m[0]
 	                          : a == 1 ? (c / (uint32_t)e->m[0]) % (uint32_t)e->m[1]
 	                                   : c / ((uint32_t)e->m[0] * (uint32_t)e->m[1]);
 	if (e->wall[a] && (int)ca == (up ? e->m[a] - 1 : 0)) {

@@ -40,11 +40,14 @@ void lz_heap_sift_down(lz_heap *h, size_t k)
 		if (c >= n)
 			break;
 		/* the four grandchildren 4k+3 .. 4k+6 fill one cache line, the eight
-		 * great-grandchildren two (lz_heap_alloc): ask for them now, so that their
-		 * misses overlap the work of this level and the next */
-		__builtin_prefetch(&h->node[4 * k + 3 < n ? 4 * k + 3 : k]);
-		__builtin_prefetch(&h->node[8 * k + 7 < n ? 8 * k + 7 : k]);
-		__builtin_prefetch(&h->node[8 * k + 11 < n ? 8 * k + 11 : k]);
+		 * great-grandchildren two (lz_heap_alloc): in a heap too big for the
+		 * caches, ask for them now, so that their misses overlap the work of this
+		 * level and the next */
+		if (n >= LZ_HEAP_FAR) {
+			__builtin_prefetch(&h->node[4 * k + 3 < n ? 4 * k + 3 : k]);
+			__builtin_prefetch(&h->node[8 * k + 7 < n ? 8 * k + 7 : k]);
+			__builtin_prefetch(&h->node[8 * k + 11 < n ? 8 * k + 11 : k]);
+		}
 		/* the earlier child, chosen without a branch (a coin toss the predictor
 		 * would miss half the time): node[c + 1] may be read even when c + 1 = n,
 		 * because the array has a spare node (lz_heap_alloc), and is then ignored */

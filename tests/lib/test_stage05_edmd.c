@@ -801,3 +801,52 @@ LZ_TEST(edmd_run_refuses_to_go_back_in_time)
 	lz_edmd_free(e);
 }
 END_TEST
+
+LZ_TEST(edmd_prefetch_is_on_for_big_systems_and_changes_nothing)
+{
+	/* lz_edmd_alloc turns the prefetches on from LZ_EDMD_FAR particles on */
+	lz_edmd_params p = params(3, LZ_EDMD_FAR - 1, 0.3);
+	lz_edmd *small = alloc_ok(&p);
+	p.n = LZ_EDMD_FAR;
+	lz_edmd *big = alloc_ok(&p);
+	ck_assert_msg(!small->prefetch && big->prefetch, "prefetch is %d at n = %d and %d at "
+	              "n = %d: it must be off below LZ_EDMD_FAR and on from it", small->prefetch,
+	              LZ_EDMD_FAR - 1, big->prefetch, LZ_EDMD_FAR);
+	lz_edmd_free(small);
+	lz_edmd_free(big);
+	/* the same start with and without: the same events and the same state, bit for
+	 * bit, periodic in 3D and between walls in 2D */
+	for (int walls = 0; walls < 2; walls++) {
+		int dim = walls ? 2 : 3;
+		lz_edmd *a = lattice(dim, 1500, 0.3, walls ? LZ_EDMD_WALLS_BOX : LZ_EDMD_WALLS_NONE, 5);
+		lz_edmd *b = lattice(dim, 1500, 0.3, walls ? LZ_EDMD_WALLS_BOX : LZ_EDMD_WALLS_NONE, 5);
+		a->prefetch = 0;
+		b->prefetch = 1;
+		ck_assert(lz_edmd_run(a, 30000, INFINITY) == LZ_OK &&
+		          lz_edmd_run(b, 30000, INFINITY) == LZ_OK);
+		ck_assert_msg(a->collisions == b->collisions && a->virial == b->virial &&
+		                      lz_edmd_time(a) == lz_edmd_time(b),
+		              "%dD: with and without prefetching, %llu / %llu collisions, virial "
+		              "%.17g / %.17g", dim, (unsigned long long)a->collisions,
+		              (unsigned long long)b->collisions, a->virial, b->virial);
+		for (uint32_t i = 0; i < a->n; i++)
+			ck_assert_msg(memcmp(&a->p[i], &b->p[i], sizeof a->p[i]) == 0,
+			              "%dD: particle %u differs with and without prefetching", dim, i);
+		lz_edmd_free(a);
+		lz_edmd_free(b);
+	}
+	/* a heap big enough for sift down's prefetches still pops in order */
+	lz_heap *h = lz_heap_alloc(LZ_HEAP_FAR + 1000);
+	ck_assert(h);
+	for (uint32_t id = 0; id < h->cap; id++)
+		lz_heap_push(h, id, (double)((id * 2654435761u) % 1000003u));
+	double last = -1;
+	while (h->n > 0) {
+		double t = lz_heap_top_t(h);
+		ck_assert_msg(t >= last, "popped %g after %g", t, last);
+		last = t;
+		lz_heap_pop(h);
+	}
+	lz_heap_free(h);
+}
+END_TEST

@@ -60,6 +60,10 @@
  * event is stored as partner = LZ_EDMD_FACE(f) = -1 - f, a negative number. */
 #define LZ_EDMD_FACE(f) (-1 - (int32_t)(f))
 
+/* From this many particles on (about 3 MB of particle records, beyond a core's L2
+ * cache) the event loop prefetches (lz_edmd.prefetch): measured in lesson 05 §12. */
+#define LZ_EDMD_FAR 32768
+
 /* Room for the candidates of one prediction (the particles of a block: at most about
  * 27 · 4 in a dense fluid, far fewer on average). */
 #define LZ_EDMD_GATHER 512
@@ -121,6 +125,10 @@ typedef struct {
 	unsigned sort_every;    /* renumber the particles cell by cell every this many
 	                           re-bases (lz_edmd_sort); 0: never. Default 1 */
 	unsigned rebases;       /* re-bases so far */
+	int prefetch;           /* 1: the arrays outgrow the caches (n >= LZ_EDMD_FAR), so
+	                           the loop asks for the memory it will read next ahead of
+	                           time; 0: it would only cost instructions. Set by
+	                           lz_edmd_alloc; the trajectory is the same either way */
 	uint64_t coll_mark;     /* collisions at the last re-base (the collapse guard) */
 	/* counters since the last lz_edmd_reset_counts (the event loop adds to them) */
 	uint64_t events;        /* heap pops, stale ones included */
@@ -168,6 +176,11 @@ typedef struct {
 
 /* Fill b with the block around cell c. O(1). */
 void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b);
+
+/* Ask the memory system for the cell heads of the block around cell c (a hint: it
+ * changes nothing and never faults), so that a prediction for a particle in c finds
+ * them in the cache. O(1): 2 prefetches per row of the block. */
+void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c);
 
 /* The cell across face f of cell c, and in *jump what to add to r[f/2] of a particle
  * that crosses it (±L when it wraps, else 0). Precondition: f is not a wall face.

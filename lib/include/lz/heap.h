@@ -29,6 +29,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* From this many nodes on (512 KB, beyond what a core's L2 cache keeps of it) sift
+ * down prefetches the levels below it; below, that would only cost instructions. */
+#define LZ_HEAP_FAR 32768
+
 /* pos[id] of an item that is not in the heap. */
 #define LZ_HEAP_NONE UINT32_MAX
 
