@@ -179,7 +179,7 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	 * sentinel next[-1] = -1 makes that read safe for an empty cell, and no branch
 	 * depends on it); then the rare third and later ones. In a big system
 	 * (e->prefetch) the candidates' records are requested before the scan reads
-	 * them. See §12 "Where the time goes". */
+	 * them. See §9 "Speed". */
 	lz_edmd_block b;
 	lz_edmd_block_of(e, pi->cell, &b);
 	int32_t first[27], second[27], cand[LZ_EDMD_GATHER];

@@ -61,7 +61,7 @@
 #define LZ_EDMD_FACE(f) (-1 - (int32_t)(f))
 
 /* From this many particles on (about 3 MB of particle records, beyond a core's L2
- * cache) the event loop prefetches (lz_edmd.prefetch): measured in lesson 05 §12. */
+ * cache) the event loop prefetches (lz_edmd.prefetch): measured in lesson 05 §9. */
 #define LZ_EDMD_FAR 32768
 
 /* Room for the candidates of one prediction (the particles of a block: at most about
