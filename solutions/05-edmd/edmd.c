@@ -79,19 +79,15 @@ double lz_edmd_cell_time(const lz_edmd *e, const double r[3], const double v[3],
 		int up;
 		if (a == 0 && e->g > 0) {
 			t = lz_edmd_fall_time(r[0], v[0], e->g, lo, hi, &up);
-		} else if (v[a] > 0) {
-			t = (hi - r[a]) / v[a];
-			up = 1;
-		} else if (v[a] < 0) {
-			t = (lo - r[a]) / v[a];
-			up = 0;
 		} else {
-			continue;
+			/* the sign of v is a coin toss: chosen without a branch (v = 0: the
+			 * face at infinity) */
+			up = v[a] > 0;
+			t = v[a] != 0 ? ((up ? hi : lo) - r[a]) / v[a] : INFINITY;
 		}
-		if (t < best) {
-			best = t;
-			*face = 2 * a + up;
-		}
+		int earlier = t < best;
+		best = earlier ? t : best;
+		*face = earlier ? 2 * a + up : *face;
 	}
 	return best > 0 ? best : 0.0;
 	/* LZ_SOLUTION_END */
@@ -128,14 +124,19 @@ earliest(const lz_edmd *e, int32_t self, const int32_t *cand, const uint8_t *fro
 		double vv = dv0 * dv0 + dv1 * dv1 + dv2 * dv2;
 		double c = dr0 * dr0 + dr1 * dr1 + dr2 * dr2 - 1.0;
 		double disc = b * b - vv * c;
-		/* max(x, 0) = (x + |x|)/2 exactly, without a branch; t = 0 when touching */
-		double t = 0.5 * (c + fabs(c)) / (-b + sqrt(0.5 * (disc + fabs(disc))));
-		/* i is among the candidates: excluded here rather than by a branch in the
-		 * gathering, and never trusted to give exactly dr = dv = 0 */
-		if ((b < 0) & (disc > 0) & (t < first) & (cand[q] != self)) {
-			first = t;
-			who = q;
-		}
+		/* max(x, 0) = (x + |x|)/2 exactly, without a branch: t = 0 when touching,
+		 * and a negative disc (a miss, rejected below) is not rooted */
+		double cp = 0.5 * (c + fabs(c)), dp = 0.5 * (disc + fabs(disc));
+		/* a pair that recedes or misses never collides, nor does i with itself (it is
+		 * among the candidates: excluded here rather than by a branch in the
+		 * gathering, and never trusted to give exactly dr = dv = 0). Whether a
+		 * candidate approaches is a coin toss a branch would miss half the time, so
+		 * the verdict is an index instead: t + 0 or t + ∞ */
+		static const double never[2] = {INFINITY, 0};
+		double t = cp / (-b + sqrt(dp)) + never[(b < 0) & (disc > 0) & (cand[q] != self)];
+		int earlier = t < first;  /* and keep the earliest, without a branch either */
+		who = earlier ? q : who;
+		first = earlier ? t : first;
 	}
 	if (who >= 0) {
 		*best = first;
@@ -183,33 +184,49 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	lz_edmd_block b;
 	lz_edmd_block_of(e, pi->cell, &b);
 	int32_t first[27], second[27], cand[LZ_EDMD_GATHER];
-	uint8_t from[LZ_EDMD_GATHER];
+	uint8_t from[LZ_EDMD_GATHER], more[27];
 	double seen[27][3];  /* i's position as seen from each cell of the block */
 	int nk = 0;
-	for (int z = 0; z < b.n[2]; z++)
-		for (int y = 0; y < b.n[1]; y++)
-			for (int x = 0; x < b.n[0]; x++, nk++) {
-				first[nk] = e->head[b.off[0][x] + b.off[1][y] + b.off[2][z]];
-				seen[nk][0] = ri[0] - b.shift[0][x];
-				seen[nk][1] = ri[1] - b.shift[1][y];
-				seen[nk][2] = ri[2] - b.shift[2][z];
+	if (!b.wraps && b.n[0] == 3) {
+		/* inside the box: each row of the block is three cells side by side, and
+		 * every cell sees i where it is (seen[0]) */
+		for (int z = 0; z < b.n[2]; z++)
+			for (int y = 0; y < b.n[1]; y++, nk += 3) {
+				const int32_t *row = e->head + b.off[0][0] + b.off[1][y] + b.off[2][z];
+				first[nk] = row[0];
+				first[nk + 1] = row[1];
+				first[nk + 2] = row[2];
 			}
-	int nc = 0;
+		for (int a = 0; a < 3; a++)
+			seen[0][a] = ri[a];
+	} else {
+		for (int z = 0; z < b.n[2]; z++)
+			for (int y = 0; y < b.n[1]; y++)
+				for (int x = 0; x < b.n[0]; x++, nk++) {
+					first[nk] = e->head[b.off[0][x] + b.off[1][y] + b.off[2][z]];
+					seen[nk][0] = ri[0] - b.shift[0][x];
+					seen[nk][1] = ri[1] - b.shift[1][y];
+					seen[nk][2] = ri[2] - b.shift[2][z];
+				}
+	}
+	uint8_t own = b.wraps || b.n[0] < 3 ? 0xff : 0;  /* from[] = k, or all 0 */
+	int nc = 0, nm = 0;
 	for (int k = 0; k < nk; k++) {
 		second[k] = e->next[first[k]];
 		cand[nc] = first[k];
-		from[nc] = (uint8_t)k;
+		from[nc] = (uint8_t)k & own;
 		nc += first[k] >= 0;
 		cand[nc] = second[k];
-		from[nc] = (uint8_t)k;
+		from[nc] = (uint8_t)k & own;
 		nc += second[k] >= 0;
+		more[nm] = (uint8_t)k;  /* the cells with a second particle may have more */
+		nm += second[k] >= 0;
 	}
 	if (e->prefetch)
 		for (int q = 0; q < nc; q++)
 			__builtin_prefetch(&e->p[cand[q]]);
-	for (int k = 0; k < nk; k++) {
-		if (second[k] < 0)
-			continue;
+	for (int r = 0; r < nm; r++) {
+		int k = more[r];
 		for (int32_t j = e->next[second[k]]; j >= 0; j = e->next[j]) {
 			if (nc == LZ_EDMD_GATHER) {  /* a crowded block: scan what we have */
 				scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev);
@@ -217,7 +234,7 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 			}
 			__builtin_prefetch(&e->p[j]);
 			cand[nc] = j;
-			from[nc++] = (uint8_t)k;
+			from[nc++] = (uint8_t)k & own;
 		}
 	}
 	scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev);

@@ -172,6 +172,8 @@ typedef struct {
 	int n[3];
 	uint32_t off[3][3];  /* the cell coordinate times its stride (1, m[0], m[0]·m[1]) */
 	double shift[3][3];
+	int wraps;           /* 1 when some shift is not 0 (the block crosses the periodic
+	                        boundary); 0: every cell sees the centre's positions */
 } lz_edmd_block;
 
 /* Fill b with the block around cell c. O(1). */
