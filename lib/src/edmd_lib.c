@@ -142,12 +142,21 @@ double lz_edmd_fall_time(double x, double v, double g, double lo, double hi, int
 
 /* ---- the box ---- */
 
+/* The most cells per side: the largest m with m^dim <= LZ_EDMD_CELLS_MAX. */
+static int cells_cap(int dim)
+{
+	int m = (int)floor(pow((double)LZ_EDMD_CELLS_MAX, 1.0 / dim) + 0.5);
+	while (pow(m, dim) > (double)LZ_EDMD_CELLS_MAX)
+		m--;
+	return m;
+}
+
 int lz_edmd_auto_cells(int dim, size_t n, double L)
 {
 	double most = floor(L);  /* cells no narrower than σ */
 	double per = dim == 3 ? 3.0 : 1.5;  /* lesson 05 §6: as fast as 8 here, fewer bytes */
 	double want = ceil(pow(per * (double)n, 1.0 / dim));
-	double cap = floor(pow((double)((size_t)1 << 27), 1.0 / dim));
+	double cap = cells_cap(dim);
 	double m = fmin(fmin(most, fmax(want, 3)), cap);
 	return m < 3 ? 0 : (int)m;
 }
@@ -195,10 +204,11 @@ static int choose_cells(const lz_edmd_params *p, double L)
 		         L, p->n, p->packing, nmin);
 		return 0;
 	}
-	if (p->cells < least || L / p->cells < 1) {
+	if (p->cells < least || L / p->cells < 1 || p->cells > cells_cap(p->dim)) {
+		int most = (int)fmin(floor(L), cells_cap(p->dim));
 		lz_error(LZ_EINVAL, "cells = %d per side must be in [%d, %d]: at least %d %s, "
-		         "each at least σ wide in a box of side %.4g σ",
-		         p->cells, least, (int)floor(L), least,
+		         "each at least σ wide in a box of side %.4g σ, and at most 2^27 cells",
+		         p->cells, least, most, least,
 		         walled ? "" : "(a periodic block needs three distinct cells)", L);
 		return 0;
 	}

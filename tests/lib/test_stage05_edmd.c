@@ -180,6 +180,11 @@ LZ_TEST(edmd_alloc_rejects_bad_input)
 	ck_assert_msg(e->m[0] == 12 && e->m[1] == 12 && e->m[2] == 12 && e->w[0] >= 1,
 	              "cells = 12 in L = %g: m = %d, w = %g", e->L, e->m[0], e->w[0]);
 	lz_edmd_free(e);
+	/* and at most 2^27 cells (cell numbers are 32-bit): 600 per side of a box of
+	 * L = 640 would be 2.2e8 */
+	p = params(3, 50000, 1e-4);
+	p.cells = 600;
+	refused(lz_edmd_alloc(&p) == NULL, "cells = 600 in 3D", "cells = 600", "[3, 512]");
 	lz_edmd_free(NULL);
 }
 END_TEST

@@ -64,6 +64,10 @@
  * cache) the event loop prefetches (lz_edmd.prefetch): measured in lesson 05 §9. */
 #define LZ_EDMD_FAR 32768
 
+/* The most cells a box may have (2^27): cell numbers and their arithmetic stay well
+ * inside 32 bits. */
+#define LZ_EDMD_CELLS_MAX ((size_t)1 << 27)
+
 /* Room for the candidates of one prediction (the particles of a block: at most about
  * 27 · 4 in a dense fluid, far fewer on average). */
 #define LZ_EDMD_GATHER 512
@@ -111,7 +115,7 @@ typedef struct {
 	                           [1/2, L - 1/2]); 0: periodic */
 	int m[3];               /* cells per side (m[2] = 1 in 2D); >= 3 when periodic */
 	double w[3];            /* cell side L / m[a] (>= σ) */
-	size_t ncells;          /* m[0]·m[1]·m[2] */
+	size_t ncells;          /* m[0]·m[1]·m[2] <= LZ_EDMD_CELLS_MAX */
 	int32_t *head;          /* first particle of each cell, -1 when empty */
 	int32_t *next;          /* next particle in the same cell, -1 at the end; and
 	                           next[-1] = -1, a sentinel: the successor of "no
