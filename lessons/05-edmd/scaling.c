@@ -7,10 +7,11 @@
  * changes with N is where the data is: while the particles, events, heap and cell
  * lists (lz_edmd_bytes per particle) fit in the L2 or L3 cache an event reads them
  * fast; beyond, each prediction waits for memory, unless particles near in space are
- * near in memory. The engine renumbers the particles cell by cell at every re-base
- * (sort_every = 1, lz_edmd_sort, in its default cell order); switched off (sort_every
- * = 0), a long run ends up with its particles scattered in memory — here they are
- * shuffled at the start, which is where an unsorted run drifts to. From
+ * near in memory. The engine can renumber the particles cell by cell at every re-base
+ * (sort_every = 1, lz_edmd_sort, in its default cell order), as here for the sorted
+ * series; without (sort_every = 0, the default), a long run ends up with its particles
+ * scattered in memory — here they are shuffled at the start, which is where an
+ * unsorted run drifts to. From
  * LZ_EDMD_FAR particles on the loop prefetches (lz_edmd.prefetch: the next event's
  * cells and particles, the candidates of a prediction, the heap's lower levels); the
  * sorted system is timed once more with that switched off, on the same state.
@@ -146,8 +147,10 @@ static int measure(int dim, size_t n, const sizes *sz, lz_rng *rng, speed s[3])
 	int st = e && u ? LZ_OK : LZ_EINVAL;
 	if (st == LZ_OK && (!r || !v || !perm))
 		st = lz_error(LZ_ENOMEM, "no memory for %zu particles", n);
-	if (st == LZ_OK)
+	if (st == LZ_OK) {
+		e->sort_every = 1;
 		st = lz_edmd_place_lattice(e, rng);
+	}
 	if (st == LZ_OK)
 		st = lz_edmd_run(e, (uint64_t)(sz->melt * (double)n), INFINITY);
 	uint64_t events = (uint64_t)fmax(sz->events_min, sz->per_n * (double)n);

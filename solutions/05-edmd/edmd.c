@@ -97,20 +97,21 @@ double lz_edmd_cell_time(const lz_edmd *e, const double r[3], const double v[3],
 /* The earliest collision of particle self (velocity vi at now) with the nc candidates
  * cand[q], seen from cell from[q] of the block (i's position there: seen[from[q]]),
  * if earlier than *best: then *best and *ev become it. lz_edmd_pair_time without
- * branches: the loop's one test (an earlier event) is rarely true. fall is a constant
- * at each call (the function is always inlined), so that without gravity the compiler
- * drops the fall terms: walls and gravity cost nothing when a scene has none. */
+ * branches. fall (gravity) and shifted (some cell of the block is seen across the
+ * periodic boundary; else seen[0] serves all) are constants at each call, since the
+ * function is always inlined: without gravity the compiler drops the fall terms, so
+ * that gravity costs nothing when a scene has none. */
 static inline __attribute__((always_inline)) void
 earliest(const lz_edmd *e, int32_t self, const int32_t *cand, const uint8_t *from, int nc,
          const double seen[][3], const double vi[3], double *best, lz_edmd_event *ev,
-         int fall)
+         int fall, int shifted)
 {
 	const double now = e->now, g = e->g;
 	double first = *best;
 	int32_t who = -1;
 	for (int q = 0; q < nc; q++) {
 		const lz_edmd_particle *pj = &e->p[cand[q]];
-		const double *ro = seen[from[q]];
+		const double *ro = seen[shifted ? from[q] : 0];
 		double dt = now - pj->t0;
 		double x0 = pj->r[0] + pj->v[0] * dt, u0 = pj->v[0];  /* as lz_edmd_state */
 		if (fall) {
@@ -147,12 +148,14 @@ earliest(const lz_edmd *e, int32_t self, const int32_t *cand, const uint8_t *fro
 
 static void scan(const lz_edmd *e, int32_t self, const int32_t *cand, const uint8_t *from,
                  int nc, const double seen[][3], const double vi[3], double *best,
-                 lz_edmd_event *ev)
+                 lz_edmd_event *ev, int shifted)
 {
-	if (e->g > 0)
-		earliest(e, self, cand, from, nc, seen, vi, best, ev, 1);
+	if (e->g > 0)  /* rare: one inlined copy, shifted looked at each time */
+		earliest(e, self, cand, from, nc, seen, vi, best, ev, 1, shifted);
+	else if (shifted)
+		earliest(e, self, cand, from, nc, seen, vi, best, ev, 0, 1);
 	else
-		earliest(e, self, cand, from, nc, seen, vi, best, ev, 0);
+		earliest(e, self, cand, from, nc, seen, vi, best, ev, 0, 0);
 }
 /* LZ_HELPERS_END */
 
@@ -186,8 +189,8 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	int32_t first[27], second[27], cand[LZ_EDMD_GATHER];
 	uint8_t from[LZ_EDMD_GATHER], more[27];
 	double seen[27][3];  /* i's position as seen from each cell of the block */
-	int nk = 0;
-	if (!b.wraps && b.n[0] == 3) {
+	int nk = 0, shifted = b.wraps || b.n[0] < 3;  /* seen[k] per cell, or seen[0] */
+	if (!shifted) {
 		/* inside the box: each row of the block is three cells side by side, and
 		 * every cell sees i where it is (seen[0]) */
 		for (int z = 0; z < b.n[2]; z++)
@@ -209,15 +212,14 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 					seen[nk][2] = ri[2] - b.shift[2][z];
 				}
 	}
-	uint8_t own = b.wraps || b.n[0] < 3 ? 0xff : 0;  /* from[] = k, or all 0 */
 	int nc = 0, nm = 0;
 	for (int k = 0; k < nk; k++) {
 		second[k] = e->next[first[k]];
 		cand[nc] = first[k];
-		from[nc] = (uint8_t)k & own;
+		from[nc] = (uint8_t)k;
 		nc += first[k] >= 0;
 		cand[nc] = second[k];
-		from[nc] = (uint8_t)k & own;
+		from[nc] = (uint8_t)k;
 		nc += second[k] >= 0;
 		more[nm] = (uint8_t)k;  /* the cells with a second particle may have more */
 		nm += second[k] >= 0;
@@ -229,15 +231,15 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 		int k = more[r];
 		for (int32_t j = e->next[second[k]]; j >= 0; j = e->next[j]) {
 			if (nc == LZ_EDMD_GATHER) {  /* a crowded block: scan what we have */
-				scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev);
+				scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev, shifted);
 				nc = 0;
 			}
 			__builtin_prefetch(&e->p[j]);
 			cand[nc] = j;
-			from[nc++] = (uint8_t)k & own;
+			from[nc++] = (uint8_t)k;
 		}
 	}
-	scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev);
+	scan(e, (int32_t)i, cand, from, nc, seen, vi, &best, &ev, shifted);
 	e->ev[i] = ev;
 	if (lz_heap_contains(e->heap, i))
 		lz_heap_update(e->heap, i, e->now + best);

@@ -127,7 +127,8 @@ typedef struct {
 	double t_base;          /* the time at which now was last set to 0 */
 	uint64_t since_rebase;  /* events since then */
 	unsigned sort_every;    /* renumber the particles cell by cell every this many
-	                           re-bases (lz_edmd_sort); 0: never. Default 1 */
+	                           re-bases (lz_edmd_sort); 0: never. Default 0: no gain
+	                           once the loop prefetches (lesson 05 §9) */
 	unsigned rebases;       /* re-bases so far */
 	int prefetch;           /* 1: the arrays outgrow the caches (n >= LZ_EDMD_FAR), so
 	                           the loop asks for the memory it will read next ahead of
