@@ -88,8 +88,12 @@ void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c)
 		for (int dy = -ry; dy <= ry; dy++) {
 			int row[3] = {0, (cc[1] + dy + e->m[1]) % e->m[1], (cc[2] + dz + e->m[2]) % e->m[2]};
 			uint32_t base = cell_index(e, row);
-			__builtin_prefetch(&e->head[base + (uint32_t)((cc[0] + e->m[0] - 1) % e->m[0])]);
-			__builtin_prefetch(&e->head[base + (uint32_t)((cc[0] + 1) % e->m[0])]);
+			uint32_t first = base + (uint32_t)((cc[0] + e->m[0] - 1) % e->m[0]);
+			uint32_t last = base + (uint32_t)((cc[0] + 1) % e->m[0]);
+			__builtin_prefetch(&e->head[first]);
+			__builtin_prefetch(&e->head[last]);
+			__builtin_prefetch(&e->second[first]);
+			__builtin_prefetch(&e->second[last]);
 		}
 }
 
@@ -111,17 +115,25 @@ uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump)
 
 void lz_edmd_cell_remove(lz_edmd *e, uint32_t i)
 {
-	int32_t *link = &e->head[e->p[i].cell];
+	uint32_t c = e->p[i].cell;
+	int32_t *link = &e->head[c];
 	while (*link != (int32_t)i)
 		link = &e->next[*link];
 	*link = e->next[i];
+	e->second[c] = e->next[e->head[c]];
 }
 
 void lz_edmd_cell_insert(lz_edmd *e, uint32_t i, uint32_t c)
 {
 	e->p[i].cell = c;
-	e->next[i] = e->head[c];
+	e->next[i] = e->second[c] = e->head[c];
 	e->head[c] = (int32_t)i;
+}
+
+void lz_edmd_cell_clear(lz_edmd *e)
+{
+	for (size_t c = 0; c < e->ncells; c++)
+		e->head[c] = e->second[c] = -1;
 }
 
 double lz_edmd_fall_time(double x, double v, double g, double lo, double hi, int *up)
@@ -218,12 +230,13 @@ static int choose_cells(const lz_edmd_params *p, double L)
 static int alloc_arrays(lz_edmd *e)
 {
 	e->head = lz_bigmem_alloc(e->ncells * sizeof *e->head);
+	e->second = lz_bigmem_alloc(e->ncells * sizeof *e->second);
 	e->next = lz_bigmem_alloc((e->n + 1) * sizeof *e->next);
 	if (e->next)
 		*e->next++ = -1;  /* the sentinel next[-1] */
 	e->p = lz_bigmem_alloc(e->n * sizeof *e->p);
 	e->ev = lz_bigmem_alloc(e->n * sizeof *e->ev);
-	if (!e->head || !e->next || !e->p || !e->ev)
+	if (!e->head || !e->second || !e->next || !e->p || !e->ev)
 		return lz_error(LZ_ENOMEM, "no memory for %zu particles in %zu cells", e->n,
 		                e->ncells);
 	e->heap = lz_heap_alloc(e->n);
@@ -275,6 +288,7 @@ void lz_edmd_free(lz_edmd *e)
 	if (!e)
 		return;
 	lz_bigmem_free(e->head);
+	lz_bigmem_free(e->second);
 	lz_bigmem_free(e->next ? e->next - 1 : NULL);
 	lz_bigmem_free(e->p);
 	lz_bigmem_free(e->ev);
@@ -441,8 +455,7 @@ int lz_edmd_set(lz_edmd *e, const double *r, const double *v)
 		if (st)
 			return st;
 	}
-	for (size_t c = 0; c < e->ncells; c++)
-		e->head[c] = -1;
+	lz_edmd_cell_clear(e);
 	for (size_t i = e->n; i-- > 0;)
 		lz_edmd_cell_insert(e, (uint32_t)i, cell_of(e, e->p[i].r));
 	e->now = 0;
@@ -457,8 +470,7 @@ int lz_edmd_set(lz_edmd *e, const double *r, const double *v)
 
 void lz_edmd_start(lz_edmd *e)
 {
-	for (size_t c = 0; c < e->ncells; c++)
-		e->head[c] = -1;
+	lz_edmd_cell_clear(e);
 	for (size_t i = e->n; i-- > 0;) {
 		e->p[i].t0 = 0;
 		lz_edmd_cell_insert(e, (uint32_t)i, cell_of(e, e->p[i].r));

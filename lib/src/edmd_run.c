@@ -45,8 +45,7 @@ void lz_edmd_reset_counts(lz_edmd *e)
  * that sorting an already sorted system changes nothing). */
 static void relink(lz_edmd *e)
 {
-	for (size_t c = 0; c < e->ncells; c++)
-		e->head[c] = -1;
+	lz_edmd_cell_clear(e);
 	for (size_t i = e->n; i-- > 0;)
 		lz_edmd_cell_insert(e, (uint32_t)i, e->p[i].cell);
 }
@@ -280,6 +279,12 @@ int lz_edmd_audit(const lz_edmd *e)
 		return lz_error(LZ_EDOM, "the heap holds %zu events for %zu particles", e->heap->n,
 		                e->n);
 	size_t listed = 0;
+	for (size_t c = 0; c < e->ncells; c++) {
+		int32_t second = e->head[c] >= 0 ? e->next[e->head[c]] : -1;
+		if (e->second[c] != second)
+			return lz_error(LZ_EDOM, "cell %zu: second = %d, but its list's second "
+			                "particle is %d", c, e->second[c], second);
+	}
 	for (size_t c = 0; c < e->ncells; c++)
 		for (int32_t j = e->head[c]; j >= 0; j = e->next[j]) {
 			if ((size_t)j >= e->n || listed++ > e->n)
@@ -300,5 +305,5 @@ double lz_edmd_bytes(const lz_edmd *e)
 {
 	double per = sizeof(lz_edmd_particle) + sizeof(lz_edmd_event) + sizeof(lz_heap_node) +
 	             sizeof(uint32_t) /* heap pos */ + sizeof(int32_t) /* next */;
-	return per + (double)e->ncells * sizeof(int32_t) / (double)e->n;
+	return per + (double)e->ncells * 2 * sizeof(int32_t) / (double)e->n;  /* head, second */
 }

@@ -195,10 +195,11 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 		 * every cell sees i where it is (seen[0]) */
 		for (int z = 0; z < b.n[2]; z++)
 			for (int y = 0; y < b.n[1]; y++, nk += 3) {
-				const int32_t *row = e->head + b.off[0][0] + b.off[1][y] + b.off[2][z];
-				first[nk] = row[0];
-				first[nk + 1] = row[1];
-				first[nk + 2] = row[2];
+				uint32_t row = b.off[0][0] + b.off[1][y] + b.off[2][z];
+				for (int x = 0; x < 3; x++) {
+					first[nk + x] = e->head[row + x];
+					second[nk + x] = e->second[row + x];
+				}
 			}
 		for (int a = 0; a < 3; a++)
 			seen[0][a] = ri[a];
@@ -206,7 +207,9 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 		for (int z = 0; z < b.n[2]; z++)
 			for (int y = 0; y < b.n[1]; y++)
 				for (int x = 0; x < b.n[0]; x++, nk++) {
-					first[nk] = e->head[b.off[0][x] + b.off[1][y] + b.off[2][z]];
+					uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
+					first[nk] = e->head[c];
+					second[nk] = e->second[c];
 					seen[nk][0] = ri[0] - b.shift[0][x];
 					seen[nk][1] = ri[1] - b.shift[1][y];
 					seen[nk][2] = ri[2] - b.shift[2][z];
@@ -214,7 +217,6 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	}
 	int nc = 0, nm = 0;
 	for (int k = 0; k < nk; k++) {
-		second[k] = e->next[first[k]];
 		cand[nc] = first[k];
 		from[nc] = (uint8_t)k;
 		nc += first[k] >= 0;

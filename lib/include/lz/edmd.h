@@ -120,6 +120,10 @@ typedef struct {
 	int32_t *next;          /* next particle in the same cell, -1 at the end; and
 	                           next[-1] = -1, a sentinel: the successor of "no
 	                           particle" is "no particle", so a loop may read it */
+	int32_t *second;        /* second[c] = next[head[c]], kept up to date: a cell's
+	                           first two particles can be read without following
+	                           the list, so a prediction's reads do not wait on each
+	                           other (lesson 05 §9) */
 	lz_edmd_particle *p;    /* n particles */
 	lz_edmd_event *ev;      /* their next events */
 	lz_heap *heap;          /* particle i keyed by the time of ev[i] */
@@ -194,10 +198,12 @@ void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c);
  * O(1). */
 uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump);
 
-/* Cell-list bookkeeping: take i out of its cell's list (O(particles in the cell)),
- * put it at the head of cell c's list and set p[i].cell = c (O(1)). */
+/* Cell-list bookkeeping (head, next and second): take i out of its cell's list
+ * (O(particles in the cell)), put it at the head of cell c's list and set p[i].cell =
+ * c (O(1)), empty every cell (O(cells)). */
 void lz_edmd_cell_remove(lz_edmd *e, uint32_t i);
 void lz_edmd_cell_insert(lz_edmd *e, uint32_t i, uint32_t c);
+void lz_edmd_cell_clear(lz_edmd *e);
 
 /* The earliest t >= 0 at which x(t) = x + v t - g t²/2 (g > 0) reaches lo (going
  * down) or hi (going up), lo <= x <= hi up to round-off; *up = 1 when it is hi.
