@@ -107,25 +107,48 @@ static int check_stall(const lz_edmd *e, uint64_t window)
 	                lz_edmd_time(e), (unsigned long long)window, e->now, tau, e->restitution);
 }
 
-/* Before an event: ask for what it and the next one will read. Event by event the
- * loop jumps to random places in memory, and each prediction waits on a chain of
- * misses (cell head, list, particle); these prefetches let the chains of the two
- * partners and of the next event overlap. The next event is most likely that of one
- * of the root's children. A hint only: nothing is written. */
+/* The node that comes up when node k leaves the heap: its earlier child. */
+static size_t earlier_child(const lz_heap *h, size_t k)
+{
+	size_t c = 2 * k + 1;
+	return c + (h->node[c + 1].t < h->node[c].t);
+}
+
+/* Before an event: ask for what this event and the next two will read, a stage of the
+ * chain each. Event by event the loop jumps to random places in memory, and every
+ * prediction waits on a chain of misses (cell heads, particle records); fetched an
+ * event or two ahead, the chains of successive events overlap. The next event is
+ * almost always the root's earlier child (a new event is seldom that soon), and the
+ * one after it the earlier of that child's sibling and its own earlier child. A hint
+ * only: nothing is written, and a wrong guess costs a few wasted fetches. */
 static void fetch_ahead(const lz_edmd *e)
 {
 	const lz_heap *h = e->heap;
-	uint32_t i = lz_heap_top(h);
-	int32_t j = e->ev[i].partner;
-	lz_edmd_prefetch_block(e, e->p[i].cell);
+	if (h->n < 16)
+		return;
+	/* this event: its own cells and records were asked for an event ago; now the
+	 * partner's cells (its record was asked for then too) and heap node */
+	int32_t j = e->ev[lz_heap_top(h)].partner;
 	if (j >= 0) {
 		lz_edmd_prefetch_block(e, e->p[j].cell);
 		__builtin_prefetch(&h->node[h->pos[j]]);
 	}
-	for (size_t q = 1; q <= 2 && q < h->n; q++) {
-		__builtin_prefetch(&e->p[h->node[q].id]);
-		__builtin_prefetch(&e->ev[h->node[q].id]);
+	/* the next event: its record and event were asked for an event ago; now its
+	 * cells, its partner's record and heap position */
+	size_t k1 = earlier_child(h, 0);
+	uint32_t c1 = h->node[k1].id;
+	int32_t j1 = e->ev[c1].partner;
+	lz_edmd_prefetch_block(e, e->p[c1].cell);
+	if (j1 >= 0) {
+		__builtin_prefetch(&e->p[j1]);
+		__builtin_prefetch(&h->pos[j1]);
 	}
+	/* the event after: its record and event */
+	size_t k2 = k1 == 1 ? 2 : 1, kc = earlier_child(h, k1);
+	if (h->node[kc].t < h->node[k2].t)
+		k2 = kc;
+	__builtin_prefetch(&e->p[h->node[k2].id]);
+	__builtin_prefetch(&e->ev[h->node[k2].id]);
 }
 
 int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
