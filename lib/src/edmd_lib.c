@@ -79,17 +79,13 @@ void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b)
 
 void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c)
 {
-	int cc[3];
-	cell_coords(e, c, cc);
-	int ry = e->dim > 1, rz = e->dim > 2;
-	/* a row's three cells span at most two cache lines: its first and last cells;
-	 * wrapping on a wall axis only fetches a line that is not needed */
-	for (int dz = -rz; dz <= rz; dz++)
-		for (int dy = -ry; dy <= ry; dy++) {
-			int row[3] = {0, (cc[1] + dy + e->m[1]) % e->m[1], (cc[2] + dz + e->m[2]) % e->m[2]};
-			uint32_t base = cell_index(e, row);
-			uint32_t first = base + (uint32_t)((cc[0] + e->m[0] - 1) % e->m[0]);
-			uint32_t last = base + (uint32_t)((cc[0] + 1) % e->m[0]);
+	lz_edmd_block b;
+	lz_edmd_block_of(e, c, &b);
+	/* a row's cells span at most two cache lines: its first and last cells */
+	for (int z = 0; z < b.n[2]; z++)
+		for (int y = 0; y < b.n[1]; y++) {
+			uint32_t row = b.off[1][y] + b.off[2][z];
+			uint32_t first = row + b.off[0][0], last = row + b.off[0][b.n[0] - 1];
 			__builtin_prefetch(&e->head[first]);
 			__builtin_prefetch(&e->head[last]);
 			__builtin_prefetch(&e->second[first]);
