@@ -62,9 +62,9 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	/* Hint: get i's position and velocity now (lz_edmd_state). Start from the cell
 	 * time (partner LZ_EDMD_FACE(face), or LZ_EDMD_NONE at infinity). Then for every
 	 * cell of the block (lz_edmd_block_of(e, p[i].cell, &b): a loop over z, y, x) and
-	 * every j != i in its list (head/next), take j's state now, dr = r_j + shift - r_i
-	 * (the shifts of the cell's three axes), dv = v_j - v_i, and
-	 * keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
+	 * every j != i in its list (j = list[c].head, then next[j]), take j's state now,
+	 * dr = r_j + shift - r_i (the shifts of the cell's three axes), dv = v_j - v_i,
+	 * and keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
 	 * give i the key now + t in the heap (lz_heap_contains: update, else push).
 	 * See §5 "One event per particle". */
 	LZ_TODO();

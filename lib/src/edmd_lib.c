@@ -86,10 +86,8 @@ void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c)
 		for (int y = 0; y < b.n[1]; y++) {
 			uint32_t row = b.off[1][y] + b.off[2][z];
 			uint32_t first = row + b.off[0][0], last = row + b.off[0][b.n[0] - 1];
-			__builtin_prefetch(&e->head[first]);
-			__builtin_prefetch(&e->head[last]);
-			__builtin_prefetch(&e->second[first]);
-			__builtin_prefetch(&e->second[last]);
+			__builtin_prefetch(&e->list[first]);
+			__builtin_prefetch(&e->list[last]);
 		}
 }
 
@@ -112,24 +110,24 @@ uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump)
 void lz_edmd_cell_remove(lz_edmd *e, uint32_t i)
 {
 	uint32_t c = e->p[i].cell;
-	int32_t *link = &e->head[c];
+	int32_t *link = &e->list[c].head;
 	while (*link != (int32_t)i)
 		link = &e->next[*link];
 	*link = e->next[i];
-	e->second[c] = e->next[e->head[c]];
+	e->list[c].second = e->next[e->list[c].head];
 }
 
 void lz_edmd_cell_insert(lz_edmd *e, uint32_t i, uint32_t c)
 {
 	e->p[i].cell = c;
-	e->next[i] = e->second[c] = e->head[c];
-	e->head[c] = (int32_t)i;
+	e->next[i] = e->list[c].second = e->list[c].head;
+	e->list[c].head = (int32_t)i;
 }
 
 void lz_edmd_cell_clear(lz_edmd *e)
 {
 	for (size_t c = 0; c < e->ncells; c++)
-		e->head[c] = e->second[c] = -1;
+		e->list[c].head = e->list[c].second = -1;
 }
 
 double lz_edmd_fall_time(double x, double v, double g, double lo, double hi, int *up)
@@ -225,14 +223,13 @@ static int choose_cells(const lz_edmd_params *p, double L)
 
 static int alloc_arrays(lz_edmd *e)
 {
-	e->head = lz_bigmem_alloc(e->ncells * sizeof *e->head);
-	e->second = lz_bigmem_alloc(e->ncells * sizeof *e->second);
+	e->list = lz_bigmem_alloc(e->ncells * sizeof *e->list);
 	e->next = lz_bigmem_alloc((e->n + 1) * sizeof *e->next);
 	if (e->next)
 		*e->next++ = -1;  /* the sentinel next[-1] */
 	e->p = lz_bigmem_alloc(e->n * sizeof *e->p);
 	e->ev = lz_bigmem_alloc(e->n * sizeof *e->ev);
-	if (!e->head || !e->second || !e->next || !e->p || !e->ev)
+	if (!e->list || !e->next || !e->p || !e->ev)
 		return lz_error(LZ_ENOMEM, "no memory for %zu particles in %zu cells", e->n,
 		                e->ncells);
 	e->heap = lz_heap_alloc(e->n);
@@ -283,8 +280,7 @@ void lz_edmd_free(lz_edmd *e)
 {
 	if (!e)
 		return;
-	lz_bigmem_free(e->head);
-	lz_bigmem_free(e->second);
+	lz_bigmem_free(e->list);
 	lz_bigmem_free(e->next ? e->next - 1 : NULL);
 	lz_bigmem_free(e->p);
 	lz_bigmem_free(e->ev);

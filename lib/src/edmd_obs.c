@@ -256,8 +256,8 @@ static void gr_lists(const lz_edmd *e, const double *r, uint32_t c, uint32_t d,
                      const double shift[3], int same, gsl_histogram *h, double lo2,
                      double hi2)
 {
-	for (int32_t i = e->head[c]; i >= 0; i = e->next[i])
-		for (int32_t j = same ? e->next[i] : e->head[d]; j >= 0; j = e->next[j]) {
+	for (int32_t i = e->list[c].head; i >= 0; i = e->next[i])
+		for (int32_t j = same ? e->next[i] : e->list[d].head; j >= 0; j = e->next[j]) {
 			double d2 = 0;
 			for (int a = 0; a < 3; a++) {
 				double x = r[3 * j + a] + shift[a] - r[3 * i + a];
@@ -276,7 +276,7 @@ static void gr_cell(const lz_edmd *e, const double *r, const int reach[3], const
 	static const double none[3] = {0, 0, 0};
 	uint32_t c = (uint32_t)cc[0] + (uint32_t)e->m[0] * ((uint32_t)cc[1] +
 	             (uint32_t)e->m[1] * (uint32_t)cc[2]);
-	if (e->head[c] < 0)
+	if (e->list[c].head < 0)
 		return;
 	gr_lists(e, r, c, c, none, 1, h, lo2, hi2);
 	int o[3];
@@ -296,7 +296,7 @@ static void gr_cell(const lz_edmd *e, const double *r, const int reach[3], const
 				}
 				uint32_t d = inside ? (uint32_t)q[0] + (uint32_t)e->m[0] * ((uint32_t)q[1] +
 				             (uint32_t)e->m[1] * (uint32_t)q[2]) : 0;
-				if (inside && e->head[d] >= 0)
+				if (inside && e->list[d].head >= 0)
 					gr_lists(e, r, c, d, shift, 0, h, lo2, hi2);
 			}
 }

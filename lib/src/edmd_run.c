@@ -56,7 +56,7 @@ int lz_edmd_sort(lz_edmd *e)
 	 * rebuilt at the end, so it holds the new numbers meanwhile. */
 	uint32_t *to = e->heap->pos, k = 0;
 	for (size_t c = 0; c < e->ncells; c++)
-		for (int32_t j = e->head[c]; j >= 0; j = e->next[j])
+		for (int32_t j = e->list[c].head; j >= 0; j = e->next[j])
 			to[j] = k++;
 	for (size_t i = 0; i < e->n; i++)
 		if (e->ev[i].partner >= 0)
@@ -230,7 +230,7 @@ double lz_edmd_max_overlap(const lz_edmd *e, uint32_t *pi, uint32_t *pj)
 				for (int x = 0; x < b.n[0]; x++) {
 					uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
 					double sh[3] = {b.shift[0][x], b.shift[1][y], b.shift[2][z]};
-					for (int32_t j = e->head[c]; j >= 0; j = e->next[j]) {
+					for (int32_t j = e->list[c].head; j >= 0; j = e->next[j]) {
 						if ((uint32_t)j <= i)
 							continue;
 						double rj[3], vj[3], d2 = 0;
@@ -303,13 +303,13 @@ int lz_edmd_audit(const lz_edmd *e)
 		                e->n);
 	size_t listed = 0;
 	for (size_t c = 0; c < e->ncells; c++) {
-		int32_t second = e->head[c] >= 0 ? e->next[e->head[c]] : -1;
-		if (e->second[c] != second)
+		int32_t second = e->list[c].head >= 0 ? e->next[e->list[c].head] : -1;
+		if (e->list[c].second != second)
 			return lz_error(LZ_EDOM, "cell %zu: second = %d, but its list's second "
-			                "particle is %d", c, e->second[c], second);
+			                "particle is %d", c, e->list[c].second, second);
 	}
 	for (size_t c = 0; c < e->ncells; c++)
-		for (int32_t j = e->head[c]; j >= 0; j = e->next[j]) {
+		for (int32_t j = e->list[c].head; j >= 0; j = e->next[j]) {
 			if ((size_t)j >= e->n || listed++ > e->n)
 				return lz_error(LZ_EDOM, "cell %zu: its list is broken (entry %d)", c, j);
 			if (e->p[j].cell != c)
@@ -328,5 +328,5 @@ double lz_edmd_bytes(const lz_edmd *e)
 {
 	double per = sizeof(lz_edmd_particle) + sizeof(lz_edmd_event) + sizeof(lz_heap_node) +
 	             sizeof(uint32_t) /* heap pos */ + sizeof(int32_t) /* next */;
-	return per + (double)e->ncells * 2 * sizeof(int32_t) / (double)e->n;  /* head, second */
+	return per + (double)e->ncells * sizeof(lz_edmd_list) / (double)e->n;
 }

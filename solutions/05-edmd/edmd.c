@@ -164,9 +164,9 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	/* Hint: get i's position and velocity now (lz_edmd_state). Start from the cell
 	 * time (partner LZ_EDMD_FACE(face), or LZ_EDMD_NONE at infinity). Then for every
 	 * cell of the block (lz_edmd_block_of(e, p[i].cell, &b): a loop over z, y, x) and
-	 * every j != i in its list (head/next), take j's state now, dr = r_j + shift - r_i
-	 * (the shifts of the cell's three axes), dv = v_j - v_i, and
-	 * keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
+	 * every j != i in its list (j = list[c].head, then next[j]), take j's state now,
+	 * dr = r_j + shift - r_i (the shifts of the cell's three axes), dv = v_j - v_i,
+	 * and keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
 	 * give i the key now + t in the heap (lz_heap_contains: update, else push).
 	 * See §5 "One event per particle". */
 	/* LZ_SOLUTION_BEGIN */
@@ -197,8 +197,8 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 			for (int y = 0; y < b.n[1]; y++, nk += 3) {
 				uint32_t row = b.off[0][0] + b.off[1][y] + b.off[2][z];
 				for (int x = 0; x < 3; x++) {
-					first[nk + x] = e->head[row + x];
-					second[nk + x] = e->second[row + x];
+					first[nk + x] = e->list[row + x].head;
+					second[nk + x] = e->list[row + x].second;
 				}
 			}
 		for (int a = 0; a < 3; a++)
@@ -208,8 +208,8 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 			for (int y = 0; y < b.n[1]; y++)
 				for (int x = 0; x < b.n[0]; x++, nk++) {
 					uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
-					first[nk] = e->head[c];
-					second[nk] = e->second[c];
+					first[nk] = e->list[c].head;
+					second[nk] = e->list[c].second;
 					seen[nk][0] = ri[0] - b.shift[0][x];
 					seen[nk][1] = ri[1] - b.shift[1][y];
 					seen[nk][2] = ri[2] - b.shift[2][z];

@@ -155,7 +155,7 @@ static int make_overlap(const lz_edmd *ce, void *arg)
 	(void)arg;
 	lz_edmd *e = (lz_edmd *)ce;
 	for (size_t c = 0; c < e->ncells; c++) {
-		int32_t i = e->head[c], j = i >= 0 ? e->next[i] : -1;
+		int32_t i = e->list[c].head, j = i >= 0 ? e->next[i] : -1;
 		if (j < 0)
 			continue;
 		lz_edmd_sync(e);

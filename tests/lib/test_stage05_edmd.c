@@ -349,31 +349,31 @@ LZ_TEST(edmd_cell_lists_remove_and_insert)
 	lz_edmd *e = box_of_side(2, 6, 9, LZ_EDMD_WALLS_NONE);
 	lz_edmd_cell_clear(e);
 	for (size_t c = 0; c < e->ncells; c++)
-		ck_assert_msg(e->head[c] == -1 && e->second[c] == -1, "cleared cell %zu: head %d, "
-		              "second %d", c, e->head[c], e->second[c]);
+		ck_assert_msg(e->list[c].head == -1 && e->list[c].second == -1, "cleared cell %zu: head %d, "
+		              "second %d", c, e->list[c].head, e->list[c].second);
 	for (uint32_t i = 0; i < 6; i++)
 		lz_edmd_cell_insert(e, i, i < 4 ? 2 : 5);  /* cell 2: 3 2 1 0; cell 5: 5 4 */
-	ck_assert_msg(e->head[2] == 3 && e->next[3] == 2 && e->next[2] == 1 && e->next[1] == 0 &&
+	ck_assert_msg(e->list[2].head == 3 && e->next[3] == 2 && e->next[2] == 1 && e->next[1] == 0 &&
 	                      e->next[0] == -1 && e->p[1].cell == 2,
 	              "insert puts the particle at the head of the list and sets its cell");
-	ck_assert_msg(e->second[2] == 2 && e->second[5] == 4, "second[] holds each list's second "
-	              "particle: cell 2 (3 2 1 0) says %d, cell 5 (5 4) says %d", e->second[2],
-	              e->second[5]);
+	ck_assert_msg(e->list[2].second == 2 && e->list[5].second == 4, "second[] holds each list's second "
+	              "particle: cell 2 (3 2 1 0) says %d, cell 5 (5 4) says %d", e->list[2].second,
+	              e->list[5].second);
 	ck_assert_msg(e->next[-1] == -1, "the sentinel next[-1] must be -1");
 	lz_edmd_cell_remove(e, 1);  /* middle */
 	lz_edmd_cell_remove(e, 3);  /* head */
 	lz_edmd_cell_remove(e, 0);  /* tail */
-	ck_assert_msg(e->head[2] == 2 && e->next[2] == -1 && e->second[2] == -1, "after removing "
+	ck_assert_msg(e->list[2].head == 2 && e->next[2] == -1 && e->list[2].second == -1, "after removing "
 	              "1, 3 and 0 the list of cell 2 is just 2: head %d, next %d, second %d",
-	              e->head[2], e->next[2], e->second[2]);
+	              e->list[2].head, e->next[2], e->list[2].second);
 	lz_edmd_cell_remove(e, 2);
-	ck_assert_msg(e->head[2] == -1, "an emptied cell has head -1, got %d", e->head[2]);
+	ck_assert_msg(e->list[2].head == -1, "an emptied cell has head -1, got %d", e->list[2].head);
 	lz_edmd_cell_insert(e, 0, 5);
-	ck_assert_msg(e->head[5] == 0 && e->next[0] == 5 && e->next[5] == 4 && e->next[4] == -1 &&
-	                      e->second[5] == 5,
-	              "cell 5 is now 0 5 4, second 5: second = %d", e->second[5]);
+	ck_assert_msg(e->list[5].head == 0 && e->next[0] == 5 && e->next[5] == 4 && e->next[4] == -1 &&
+	                      e->list[5].second == 5,
+	              "cell 5 is now 0 5 4, second 5: second = %d", e->list[5].second);
 	lz_edmd_cell_remove(e, 5);  /* the second goes: the third moves up */
-	ck_assert_msg(e->second[5] == 4, "cell 5 is now 0 4: second %d", e->second[5]);
+	ck_assert_msg(e->list[5].second == 4, "cell 5 is now 0 4: second %d", e->list[5].second);
 	ck_assert_msg(e->next[-1] == -1, "the sentinel next[-1] must stay -1");
 	lz_edmd_free(e);
 }
@@ -767,11 +767,11 @@ LZ_TEST(edmd_audit_finds_hand_broken_states)
 	e->p[i] = keep;
 	/* a second[] that is not the list's second particle */
 	uint32_t c = e->p[i].cell;
-	int32_t second = e->second[c];
-	e->second[c] = second >= 0 ? -1 : (int32_t)i;
+	int32_t second = e->list[c].second;
+	e->list[c].second = second >= 0 ? -1 : (int32_t)i;
 	ck_assert_msg(lz_edmd_audit(e) == LZ_EDOM && strstr(lz_error_message(), "second"),
 	              "second[] broken: %s", lz_error_message());
-	e->second[c] = second;
+	e->list[c].second = second;
 	/* an event in the past */
 	lz_heap_node *nd = &e->heap->node[e->heap->pos[i]];
 	double t = nd->t;

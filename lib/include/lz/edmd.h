@@ -87,6 +87,15 @@ typedef struct {
 	uint32_t cell;   /* the cell whose list holds the particle */
 } lz_edmd_particle;
 
+/* The head of a cell's list, and its second particle beside it (second = next[head],
+ * kept up to date): a cell's first two particles are read at once, without following
+ * the list, and both with one cache line — a prediction's reads do not wait on each
+ * other (lesson 05 §9). -1: no such particle. */
+typedef struct {
+	int32_t head;
+	int32_t second;
+} lz_edmd_list;
+
 /* A particle's next event; its time is the particle's key in the heap. */
 typedef struct {
 	int32_t partner;  /* >= 0: collision with that particle; LZ_EDMD_FACE(f): leaving
@@ -116,14 +125,10 @@ typedef struct {
 	int m[3];               /* cells per side (m[2] = 1 in 2D); >= 3 when periodic */
 	double w[3];            /* cell side L / m[a] (>= σ) */
 	size_t ncells;          /* m[0]·m[1]·m[2] <= LZ_EDMD_CELLS_MAX */
-	int32_t *head;          /* first particle of each cell, -1 when empty */
+	lz_edmd_list *list;     /* list[c]: the head of cell c's list of particles */
 	int32_t *next;          /* next particle in the same cell, -1 at the end; and
 	                           next[-1] = -1, a sentinel: the successor of "no
 	                           particle" is "no particle", so a loop may read it */
-	int32_t *second;        /* second[c] = next[head[c]], kept up to date: a cell's
-	                           first two particles can be read without following
-	                           the list, so a prediction's reads do not wait on each
-	                           other (lesson 05 §9) */
 	lz_edmd_particle *p;    /* n particles */
 	lz_edmd_event *ev;      /* their next events */
 	lz_heap *heap;          /* particle i keyed by the time of ev[i] */
@@ -198,7 +203,7 @@ void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c);
  * O(1). */
 uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump);
 
-/* Cell-list bookkeeping (head, next and second): take i out of its cell's list
+/* Cell-list bookkeeping (list and next): take i out of its cell's list
  * (O(particles in the cell)), put it at the head of cell c's list and set p[i].cell =
  * c (O(1)), empty every cell (O(cells)). */
 void lz_edmd_cell_remove(lz_edmd *e, uint32_t i);
