@@ -40,14 +40,13 @@ void lz_heap_sift_down(lz_heap *h, size_t k)
 		if (c >= n)
 			break;
 		/* the four grandchildren 4k+3 .. 4k+6 fill one cache line, the eight
-		 * great-grandchildren two (lz_heap_alloc): in a heap too big for the
-		 * caches, ask for them now, so that their misses overlap the work of this
-		 * level and the next */
-		if (n >= LZ_HEAP_FAR) {
-			__builtin_prefetch(&h->node[4 * k + 3 < n ? 4 * k + 3 : k]);
-			__builtin_prefetch(&h->node[8 * k + 7 < n ? 8 * k + 7 : k]);
-			__builtin_prefetch(&h->node[8 * k + 11 < n ? 8 * k + 11 : k]);
-		}
+		 * great-grandchildren two, the sixteen below them four (lz_heap_alloc): in
+		 * a heap too big for the caches, ask for them now, so that the misses of
+		 * the next three levels overlap the work of this one */
+		if (n >= LZ_HEAP_FAR)
+			for (size_t g = 4 * k + 3, w = 4; w <= 16; g = 2 * g + 1, w *= 2)
+				for (size_t l = 0; l < w; l += 4)
+					__builtin_prefetch(&h->node[g + l < n ? g + l : k]);
 		/* the earlier child, chosen without a branch (a coin toss the predictor
 		 * would miss half the time): node[c + 1] may be read even when c + 1 = n,
 		 * because the array has a spare node (lz_heap_alloc), and is then ignored */
