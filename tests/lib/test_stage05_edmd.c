@@ -733,7 +733,7 @@ LZ_TEST(edmd_clock_counters_and_observables)
 	ck_assert_msg(fabs(over - worst) < 1e-12, "max_overlap %.15g (pair %u, %u), all pairs give "
 	              "%.15g", over, pi, pj, worst);
 	double bytes = lz_edmd_bytes(e);
-	ck_assert_msg(bytes > 80 && bytes < 200, "bytes per particle %g: the header says about 100",
+	ck_assert_msg(bytes > 80 && bytes < 200, "bytes per particle %g: the header says about 110",
 	              bytes);
 	lz_edmd_free(e);
 }

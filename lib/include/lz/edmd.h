@@ -41,8 +41,8 @@
  * every N events the run brings every particle up to date and subtracts `now` from
  * every time (lz_edmd_rebase); the time already run is kept apart in t_base.
  *
- * Memory: 64 bytes of particle, 8 of event, 16 + 4 of heap, 4 of cell list, and 4 per
- * cell: about 100 bytes per particle in a dense fluid (lz_edmd_bytes).
+ * Memory: 64 bytes of particle, 8 of event, 16 + 4 of heap, 4 of cell list, and 8 per
+ * cell: about 110 bytes per particle in a dense fluid (lz_edmd_bytes).
  */
 #ifndef LZ_EDMD_H
 #define LZ_EDMD_H
