@@ -319,7 +319,7 @@ static int check_keys(const lz_scene *s)
 	if ((obs & OBS_MSD) && lz_scene_given(s, "sort") && lz_scene_bool(s, "sort"))
 		return lz_scene_fail(s, "sort", "sort = yes renumbers the particles, which the "
 		                     "mean-square displacement cannot follow: say sort = no, or "
-		                     "leave it out (observe = msd turns the renumbering off)");
+		                     "leave it out (no is the default)");
 	return LZ_OK;
 }
 

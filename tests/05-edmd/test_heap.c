@@ -153,6 +153,21 @@ static void hand_heap(lz_heap *h, model *m, size_t n, gsl_rng *r)
 	free(ids);
 }
 
+/* A heap made by hand (no graded function) with node k = {keys[k], id(k)}, id(k) = k,
+ * or n - 1 - k when reversed; the keys must already be in heap order. */
+static void listed_heap(lz_heap *h, model *m, const double *keys, uint32_t n, int reversed)
+{
+	for (uint32_t k = 0; k < n; k++) {
+		uint32_t id = reversed ? n - 1 - k : k;
+		h->node[k] = (lz_heap_node){keys[k], id};
+		h->pos[id] = k;
+		m->key[id] = keys[k];
+		m->in[id] = 1;
+	}
+	h->n = n;
+	poison(h);
+}
+
 /* ---- sift up ---- */
 
 LZ_TEST(heap_sift_up_moves_an_earlier_key_to_its_place)
@@ -161,14 +176,8 @@ LZ_TEST(heap_sift_up_moves_an_earlier_key_to_its_place)
 	 * than everything: it must climb 6 -> 2 -> 0 and its ancestors move down */
 	lz_heap *h = heap_new(8);
 	model m = model_new(8);
-	for (uint32_t k = 0; k < 7; k++) {
-		h->node[k] = (lz_heap_node){10.0 * (k + 1), k};
-		h->pos[k] = k;
-		m.key[k] = 10.0 * (k + 1);
-		m.in[k] = 1;
-	}
-	h->n = 7;
-	poison(h);
+	static const double tens[7] = {10, 20, 30, 40, 50, 60, 70};
+	listed_heap(h, &m, tens, 7, 0);
 	h->node[6].t = m.key[6] = 5;
 	lz_heap_sift_up(h, 6);
 	CHECK(h->node[0].id == 6 && h->node[2].id == 0 && h->node[6].id == 2,
@@ -232,14 +241,8 @@ LZ_TEST(heap_sift_down_follows_the_earlier_child)
 	 * the earlier child each time (20 at node 1, then 40 at node 3) */
 	lz_heap *h = heap_new(8);
 	model m = model_new(8);
-	for (uint32_t k = 0; k < 7; k++) {
-		h->node[k] = (lz_heap_node){10.0 * (k + 1), k};
-		h->pos[k] = k;
-		m.key[k] = 10.0 * (k + 1);
-		m.in[k] = 1;
-	}
-	h->n = 7;
-	poison(h);
+	static const double tens[7] = {10, 20, 30, 40, 50, 60, 70};
+	listed_heap(h, &m, tens, 7, 0);
 	h->node[0].t = m.key[0] = 65;
 	lz_heap_sift_down(h, 0);
 	CHECK(h->node[0].id == 1 && h->node[1].id == 3 && h->node[3].id == 0,
@@ -262,15 +265,8 @@ LZ_TEST(heap_sift_down_follows_the_earlier_child)
 	 * poison, earlier than everything, and must not be looked at) */
 	lz_heap *g = heap_new(8);
 	model mg = model_new(8);
-	double keys[6] = {1, 2, 3, 4, 5, 6};
-	for (uint32_t k = 0; k < 6; k++) {
-		g->node[k] = (lz_heap_node){keys[k], k};
-		g->pos[k] = k;
-		mg.key[k] = keys[k];
-		mg.in[k] = 1;
-	}
-	g->n = 6;
-	poison(g);
+	static const double keys[6] = {1, 2, 3, 4, 5, 6};
+	listed_heap(g, &mg, keys, 6, 0);
 	g->node[2].t = mg.key[2] = 9;
 	lz_heap_sift_down(g, 2);
 	CHECK(g->node[2].id == 5 && g->node[5].id == 2,
@@ -411,14 +407,8 @@ LZ_TEST(heap_update_moves_keys_earlier_and_later)
 	/* by hand: the root made later must sink, a leaf made earlier must rise */
 	lz_heap *h = heap_new(8);
 	model m = model_new(8);
-	for (uint32_t k = 0; k < 7; k++) {
-		h->node[k] = (lz_heap_node){k + 1.0, 6 - k};
-		h->pos[6 - k] = k;
-		m.key[6 - k] = k + 1.0;
-		m.in[6 - k] = 1;
-	}
-	h->n = 7;
-	poison(h);
+	static const double keys[7] = {1, 2, 3, 4, 5, 6, 7};
+	listed_heap(h, &m, keys, 7, 1);  /* item 6 at the root */
 	lz_heap_update(h, 6, 10);  /* item 6 was the root (key 1) */
 	m.key[6] = 10;
 	CHECK(h->node[0].id == 5 && h->pos[6] >= 3,
