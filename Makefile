@@ -127,7 +127,7 @@ DRIVERS := $(foreach s,$(STAGES),$(patsubst lessons/$(s)/%.c,$(BUILD)/lessons/$(
 
 # ---- user targets --------------------------------------------------------
 .PHONY: all tests check check-run test grade grade-all lesson demo slides bench \
-        assignments handout deps clean help need-stage
+        assignments handout mutants deps clean help need-stage
 all: $(LIB) $(LZ) $(DRIVERS)
 tests: $(TEST_BINS) $(REPORT) $(LZ)
 
@@ -177,6 +177,10 @@ bench: all
 
 assignments:
 	@bash lib/tools/mkassign.sh solutions assignments
+
+# Realistic student bugs (tests/NN-name/mutants/*.patch) against the graded tests.
+mutants: all tests
+	@bash tests/grade/mutants.sh "$(BUILD)" $(if $(STAGE),$(call stage_named,$(STAGE)))
 
 handout:
 	@bash lib/tools/handout.sh "$(BUILD)"

@@ -6,8 +6,8 @@
 # Packs the files git tracks (their working-tree content) into
 # BUILD/handout/lozenge-student.tar.gz under lozenge-student/, leaving out what only
 # the instructor has: solutions/, hidden tests (tests/*/hidden/), the grader's
-# fixtures (which hold working code) and the scripts that need them (audit.sh,
-# fixtures.sh). Without solutions/ the Makefile defaults to IMPL=assignments.
+# fixtures and the mutants (both hold working code) and the scripts that need them
+# (audit.sh, fixtures.sh, mutants.sh). Without solutions/ the Makefile defaults to IMPL=assignments.
 # Then it checks the tarball: none of those paths inside, no solution marker in any
 # file, and unpacked into a temporary directory it builds (`make all`) and
 # `make grade` there scores 0.
@@ -30,7 +30,8 @@ fail() {
 # Paths the student must not get (one pattern per line, as `case` patterns).
 instructor_only() {  # instructor_only PATH: true when PATH stays out of the handout
 	case $1 in
-	solutions/* | tests/*/hidden/* | tests/grade/fixtures/* | tests/grade/audit.sh | tests/grade/fixtures.sh)
+	solutions/* | tests/*/hidden/* | tests/*/mutants/* | tests/grade/fixtures/* | tests/grade/audit.sh | \
+	tests/grade/fixtures.sh | tests/grade/mutants.sh)
 		return 0 ;;
 	esac
 	return 1
