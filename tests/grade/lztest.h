@@ -61,6 +61,9 @@ void lz_test_register(const char *name, const TTest *test);
 			ck_abort_msg(__VA_ARGS__);     \
 	} while (0)
 
+/* The same for a condition that speaks for itself: "Assertion 'cond' failed". */
+#define LZ_REQUIRE_TRUE(cond) LZ_REQUIRE(cond, "Assertion '%s' failed", #cond)
+
 /* Relative difference |a - b| / max(|b|, tiny), for messages and tolerances. */
 double lz_test_reldiff(double a, double b);
 

@@ -26,8 +26,8 @@
 # nothing.
 #
 # Each stage runs in BUILD/mutants/NN-name/, a scratch copy of the sources, with the
-# grader's file limit. Prints `mutants: N passed, M failed`; exits non-zero on a
-# defect.
+# grader's file limit, building with JOBS parallel jobs (default: the cores). Prints
+# `mutants: N passed, M failed`; exits non-zero on a defect.
 # shellcheck source=lib/tools/common.sh
 . "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"
 cd "$ROOT"
@@ -93,7 +93,7 @@ make_tree() {
 
 tree_make() {  # tree_make TARGET...: quiet, in the scratch tree, reference everywhere
 	env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -C "$TREE" --no-print-directory \
-		-j"$(nproc 2>/dev/null || echo 2)" BUILD=build IMPL=solutions SANITIZE=0 "$@"
+		-j"${JOBS:-$(nproc 2>/dev/null || echo 2)}" BUILD=build IMPL=solutions SANITIZE=0 "$@"
 }
 
 # Run STAGE's tests (all, or the --only list) in machine mode under the grader's

@@ -76,28 +76,28 @@ LZ_TEST(site_ops_on_all_64_states)
 		int n = 0;
 		for (int d = 0; d < 6; d++)
 			n += s >> d & 1u;
-		ck_assert_msg(lz_site_count(s) == n, "state %u has %d particles, count says %d", s,
+		LZ_REQUIRE(lz_site_count(s) == n, "state %u has %d particles, count says %d", s,
 		              n, lz_site_count(s));
-		ck_assert_msg(lz_site_count(s | 0xC0u) == n, "bits above the sixth are not sites");
+		LZ_REQUIRE(lz_site_count(s | 0xC0u) == n, "bits above the sixth are not sites");
 		unsigned r = s;
 		for (int i = 0; i < 6; i++) {
 			r = lz_site_rotate(r, 1);
-			ck_assert(lz_site_count(r) == n);
+			LZ_REQUIRE_TRUE(lz_site_count(r) == n);
 		}
-		ck_assert_msg(r == s, "state %u turned six times by 60° is %u", s, r);
-		ck_assert_msg(lz_site_reverse(lz_site_reverse(s)) == s, "reverse twice of %u", s);
+		LZ_REQUIRE(r == s, "state %u turned six times by 60° is %u", s, r);
+		LZ_REQUIRE(lz_site_reverse(lz_site_reverse(s)) == s, "reverse twice of %u", s);
 		for (int k = -13; k <= 13; k++) {
-			ck_assert_msg(lz_site_rotate(lz_site_rotate(s, k), -k) == s,
+			LZ_REQUIRE(lz_site_rotate(lz_site_rotate(s, k), -k) == s,
 			              "state %u: rotate by %d and back", s, k);
-			ck_assert(lz_site_rotate(s, k) == lz_site_rotate(s, k + 6));
-			ck_assert(lz_site_rotate(s | 0x40u, k) == lz_site_rotate(s, k));
+			LZ_REQUIRE_TRUE(lz_site_rotate(s, k) == lz_site_rotate(s, k + 6));
+			LZ_REQUIRE_TRUE(lz_site_rotate(s | 0x40u, k) == lz_site_rotate(s, k));
 		}
 	}
 	/* One particle: direction d turns to d + k mod 6 and reverses to d + 3. */
 	for (int d = 0; d < 6; d++) {
-		ck_assert(lz_site_reverse(1u << d) == 1u << (d + 3) % 6);
+		LZ_REQUIRE_TRUE(lz_site_reverse(1u << d) == 1u << (d + 3) % 6);
 		for (int k = -12; k <= 12; k++)
-			ck_assert_msg(lz_site_rotate(1u << d, k) == 1u << ((d + k) % 6 + 6) % 6,
+			LZ_REQUIRE(lz_site_rotate(1u << d, k) == 1u << ((d + k) % 6 + 6) % 6,
 			              "direction %d rotated by %d gave state %u", d, k,
 			              lz_site_rotate(1u << d, k));
 	}

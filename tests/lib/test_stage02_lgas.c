@@ -77,24 +77,24 @@ LZ_TEST(lgas_uniform_density_and_totals)
 	gsl_rng *r = rng_new(2);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas *g = lz_lgas_alloc(m ? LZ_LGAS_FHP : LZ_LGAS_HPP, 128);
-		ck_assert(lz_lgas_init_uniform(g, 0.3, r) == LZ_OK);
+		LZ_REQUIRE_TRUE(lz_lgas_init_uniform(g, 0.3, r) == LZ_OK);
 		int64_t mass, p[2];
 		lz_lgas_totals(g, &mass, p);
 		double links = 128.0 * 128.0 * g->nbits, mean = mass / links;
-		ck_assert_msg(fabs(mean - 0.3) < 5 * sqrt(0.21 / links), "uniform d = 0.3: measured %g",
+		LZ_REQUIRE(fabs(mean - 0.3) < 5 * sqrt(0.21 / links), "uniform d = 0.3: measured %g",
 		              mean);
 		for (size_t i = 0; i < 128 * 128; i++)
-			ck_assert(g->site[i] < (1u << g->nbits));
+			LZ_REQUIRE_TRUE(g->site[i] < (1u << g->nbits));
 		/* By hand: one particle in each direction of the site at the origin. */
 		memset(g->site, 0, 128 * 128);
 		g->site[0] = m ? 0x03 : 0x03;  /* directions 0 and 1 */
 		lz_lgas_totals(g, &mass, p);
-		ck_assert(mass == 2 && p[0] == 1 && p[1] == 1);
-		ck_assert(lz_lgas_row_px2(g, 0) == (m ? 2 + 1 : 2));
+		LZ_REQUIRE_TRUE(mass == 2 && p[0] == 1 && p[1] == 1);
+		LZ_REQUIRE_TRUE(lz_lgas_row_px2(g, 0) == (m ? 2 + 1 : 2));
 		g->site[0] = m ? 0x3F : 0x0F;
 		lz_lgas_totals(g, &mass, p);
-		ck_assert(mass == g->nbits && p[0] == 0 && p[1] == 0);
-		ck_assert(lz_lgas_row_px2(g, 0) == 0);
+		LZ_REQUIRE_TRUE(mass == g->nbits && p[0] == 0 && p[1] == 0);
+		LZ_REQUIRE_TRUE(lz_lgas_row_px2(g, 0) == 0);
 		lz_lgas_free(g);
 	}
 	gsl_rng_free(r);
@@ -181,16 +181,16 @@ LZ_TEST(lgas_obstacle_sizes_rejected_with_range)
 		for (int k = LZ_LGAS_PLATE; k <= LZ_LGAS_DISK; k++) {
 			char value[32];
 			snprintf(value, sizeof value, "%lld", (long long)bad[i]);
-			ck_assert(lz_lgas_add_obstacle(g, (lz_lgas_obstacle)k, bad[i]) == -1);
-			ck_assert_msg(strstr(lz_error_message(), value) &&
+			LZ_REQUIRE_TRUE(lz_lgas_add_obstacle(g, (lz_lgas_obstacle)k, bad[i]) == -1);
+			LZ_REQUIRE(strstr(lz_error_message(), value) &&
 			              strstr(lz_error_message(), "[1, 32]"), "obstacle size %s on L = 64: "
 			              "the message should name it and the range [1, 32]: '%s'", value,
 			              lz_error_message());
 		}
-	ck_assert(lz_lgas_add_obstacle(g, (lz_lgas_obstacle)7, 4) == -1);
+	LZ_REQUIRE_TRUE(lz_lgas_add_obstacle(g, (lz_lgas_obstacle)7, 4) == -1);
 	ck_assert(lz_lgas_add_obstacle(g, LZ_LGAS_NO_OBSTACLE, 4) == 0);
 	for (size_t i = 0; i < 64 * 64; i++)
-		ck_assert_msg(g->site[i] == 0, "a refused obstacle marked site %zu", i);
+		LZ_REQUIRE(g->site[i] == 0, "a refused obstacle marked site %zu", i);
 	lz_lgas_free(g);
 }
 END_TEST
@@ -205,7 +205,7 @@ LZ_TEST(lgas_obstacle_shapes)
 		int fhp = m == 1;
 		double h = fhp ? sqrt(3.0) / 2.0 : 1.0;
 		lz_lgas *g = lz_lgas_alloc(fhp ? LZ_LGAS_FHP : LZ_LGAS_HPP, 128);
-		ck_assert(lz_lgas_add_obstacle(g, LZ_LGAS_PLATE, 21) == 21);
+		LZ_REQUIRE_TRUE(lz_lgas_add_obstacle(g, LZ_LGAS_PLATE, 21) == 21);
 		int rows = 0;
 		int32_t last = -1;
 		for (int32_t y = 0; y < 128; y++) {
@@ -214,24 +214,24 @@ LZ_TEST(lgas_obstacle_shapes)
 				if (g->site[lz_lgas_index(g, x, y)] & LZ_LGAS_WALL) {
 					double X, Y;
 					lz_lgas_position(g, x, y, &X, &Y);
-					ck_assert_msg(fabs(X - 32.0) <= 0.5 && fabs(Y - y * h) < 1e-12, "%s plate "
+					LZ_REQUIRE(fabs(X - 32.0) <= 0.5 && fabs(Y - y * h) < 1e-12, "%s plate "
 					              "site (%d, %d) is at X = %g, more than half a spacing from "
 					              "L/4 = 32", fhp ? "FHP" : "HPP", x, y, X);
-					ck_assert_msg(last < 0 || rows == 0 || x == last || x == last - 1,
+					LZ_REQUIRE(last < 0 || rows == 0 || x == last || x == last - 1,
 					              "plate rows step from x = %d to %d: a particle could pass",
 					              last, x);
 					last = x;
 					in_row++;
 				}
-			ck_assert(in_row <= 1);
+			LZ_REQUIRE_TRUE(in_row <= 1);
 			rows += in_row;
-			ck_assert_msg(in_row || rows == 0 || rows == 21, "the plate has a gap at row %d", y);
+			LZ_REQUIRE(in_row || rows == 0 || rows == 21, "the plate has a gap at row %d", y);
 		}
-		ck_assert(rows == 21);
+		LZ_REQUIRE_TRUE(rows == 21);
 		memset(g->site, 0, 128 * 128);
 		int64_t n = lz_lgas_add_obstacle(g, LZ_LGAS_DISK, 40);
 		double want = M_PI * 20 * 20 / h;
-		ck_assert_msg(fabs(n - want) < 0.05 * want, "%s disk of diameter 40: %lld sites, "
+		LZ_REQUIRE(fabs(n - want) < 0.05 * want, "%s disk of diameter 40: %lld sites, "
 		              "expected about π 20² / %g = %g", fhp ? "FHP" : "HPP", (long long)n, h, want);
 		for (int32_t y = 0; y < 128; y++)
 			for (int32_t x = 0; x < 128; x++) {
@@ -240,7 +240,7 @@ LZ_TEST(lgas_obstacle_shapes)
 				double r = hypot(X - 32.0, Y - 64 * h);
 				int wall = (g->site[lz_lgas_index(g, x, y)] & LZ_LGAS_WALL) != 0;
 				/* Sites at exactly 20 may go either way by round-off. */
-				ck_assert_msg(wall ? r <= 20.0 + 1e-9 : r > 20.0 - 1e-9, "%s site (%d, %d) at distance %g from the "
+				LZ_REQUIRE(wall ? r <= 20.0 + 1e-9 : r > 20.0 - 1e-9, "%s site (%d, %d) at distance %g from the "
 				              "disk's centre: wall = %d", fhp ? "FHP" : "HPP", x, y, r, wall);
 			}
 		lz_lgas_free(g);

@@ -194,7 +194,7 @@ static void walk_both(lz_field *f, lz_field *g, unsigned long seed)
 		int d = (int)gsl_rng_uniform_int(a, (unsigned long)f->excl->ndir);
 		gsl_rng_uniform_int(b, g->n);
 		gsl_rng_uniform_int(b, (unsigned long)g->excl->ndir);
-		ck_assert(lz_field_try_move(f, wf, i, d, a) == lz_field_try_move(g, wg, i, d, b));
+		LZ_REQUIRE_TRUE(lz_field_try_move(f, wf, i, d, a) == lz_field_try_move(g, wg, i, d, b));
 	}
 	ck_assert_msg(memcmp(f->r, g->r, f->n * (size_t)f->dim * sizeof *f->r) == 0 &&
 	              lz_well_energy(wf, f) == lz_well_energy(wg, g) && f->nfree == g->nfree,
@@ -215,14 +215,14 @@ LZ_TEST(field_in_a_larger_lattice_is_the_same_simulation)
 		int L = pc[k].L, P = 4 * L;
 		lz_field *f = lz_field_alloc(pc[k].kind, L, pc[k].R);
 		lz_field *g = lz_field_alloc_in(pc[k].kind, L, pc[k].R, P);
-		ck_assert_msg(f && g, "%s", lz_error_message());
+		LZ_REQUIRE(f && g, "%s", lz_error_message());
 		size_t box = f->nsites, fenced = 0;
-		ck_assert_msg(g->nsites == box * (f->dim == 3 ? 64 : 16) && g->nfree == box,
+		LZ_REQUIRE(g->nsites == box * (f->dim == 3 ? 64 : 16) && g->nfree == box,
 		              "pitch 4L: %zu sites allocated (expected %zu), %zu free (expected the "
 		              "box's %zu)", g->nsites, box * (f->dim == 3 ? 64 : 16), g->nfree, box);
 		for (size_t s = 0; s < g->nsites; s++)
 			fenced += g->cell[s] == 255;
-		ck_assert_msg(fenced == g->nsites - box, "%zu sites hold 255, expected the %zu "
+		LZ_REQUIRE(fenced == g->nsites - box, "%zu sites hold 255, expected the %zu "
 		              "outside the box", fenced, g->nsites - box);
 		rsa_both(f, g, 61 + k, box / 400);
 		rsa_both(f, g, 67 + k, 0);

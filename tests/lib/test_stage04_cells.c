@@ -189,22 +189,22 @@ LZ_TEST(cells_coords_and_index_round_trip)
 			int32_t cx[3] = {0, 0, 0};
 			lz_cells_coords(c, s, cx);
 			for (int a = 0; a < dim; a++)
-				ck_assert(cx[a] >= 0 && cx[a] < c->m);
-			ck_assert_msg(lz_cells_index(c, cx) == s, "%dD m = %d %s: cell %zu -> (%d, %d, %d) "
+				LZ_REQUIRE_TRUE(cx[a] >= 0 && cx[a] < c->m);
+			LZ_REQUIRE(lz_cells_index(c, cx) == s, "%dD m = %d %s: cell %zu -> (%d, %d, %d) "
 			              "-> %zu", dim, c->m, g[k].order ? "Morton" : "row", s, cx[0], cx[1],
 			              cx[2], lz_cells_index(c, cx));
 			size_t q = (size_t)cx[0] + (size_t)c->m * ((size_t)cx[1] + (size_t)c->m * (size_t)cx[2]);
 			if (g[k].order == LZ_CELLS_ROW) {
-				ck_assert(q == s);
+				LZ_REQUIRE_TRUE(q == s);
 				continue;
 			}
-			ck_assert(c->unrank[s] == q && c->rank[q] == s);
+			LZ_REQUIRE_TRUE(c->unrank[s] == q && c->rank[q] == s);
 			uint64_t code = bf_morton(dim, (uint32_t)cx[0], (uint32_t)cx[1], (uint32_t)cx[2]);
-			ck_assert_msg(s == 0 || code > last, "Morton order: cell %zu has code %llu, not "
+			LZ_REQUIRE(s == 0 || code > last, "Morton order: cell %zu has code %llu, not "
 			              "above the previous %llu", s, (unsigned long long)code,
 			              (unsigned long long)last);
 			if ((c->m & (c->m - 1)) == 0)
-				ck_assert_msg(code == s, "m = %d is a power of two: cell %zu has code %llu",
+				LZ_REQUIRE(code == s, "m = %d is a power of two: cell %zu has code %llu",
 				              c->m, s, (unsigned long long)code);
 			last = code;
 		}
@@ -275,12 +275,12 @@ static void check_perm(const lz_cells *c, const uint32_t *perm)
 {
 	char *seen = calloc(c->n + 1, 1);
 	for (size_t k = 0; k < c->n; k++) {
-		ck_assert_msg(perm[k] < c->n && !seen[perm[k]], "perm[%zu] = %u: not a permutation",
+		LZ_REQUIRE(perm[k] < c->n && !seen[perm[k]], "perm[%zu] = %u: not a permutation",
 		              k, perm[k]);
 		seen[perm[k]] = 1;
 		if (k > 0) {
 			uint32_t p = perm[k - 1], q = perm[k];
-			ck_assert_msg(c->of[p] < c->of[q] || (c->of[p] == c->of[q] && p < q), "perm lists "
+			LZ_REQUIRE(c->of[p] < c->of[q] || (c->of[p] == c->of[q] && p < q), "perm lists "
 			              "%u (cell %u) before %u (cell %u)", p, c->of[p], q, c->of[q]);
 		}
 	}

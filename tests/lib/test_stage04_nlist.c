@@ -139,9 +139,9 @@ LZ_TEST(nbuf_grows_by_doubling_and_keeps_entries)
 	lz_nbuf *b = &nl->buf[0];
 	size_t grew = 0, last = b->cap;
 	for (uint32_t v = 0; v < 100000; v++) {
-		ck_assert(lz_nbuf_push(b, v * 7u) == LZ_OK);
+		LZ_REQUIRE_TRUE(lz_nbuf_push(b, v * 7u) == LZ_OK);
 		if (b->cap != last) {
-			ck_assert_msg(last == 0 || b->cap == 2 * last, "the room went from %zu to %zu: "
+			LZ_REQUIRE(last == 0 || b->cap == 2 * last, "the room went from %zu to %zu: "
 			              "it must double", last, b->cap);
 			last = b->cap;
 			grew++;
@@ -295,7 +295,7 @@ LZ_TEST(nlist_refresh_single_keeps_a_still_list)
 			dx = dx > 16 ? 32 - dx : dx;
 			dy = dy > 16 ? 32 - dy : dy;
 			if (j != i && dx * dx + dy * dy < 36)
-				ck_assert(lz_nbuf_push(t, (uint32_t)j) == LZ_OK);
+				LZ_REQUIRE_TRUE(lz_nbuf_push(t, (uint32_t)j) == LZ_OK);
 		}
 	}
 	t->start[N] = (uint32_t)t->len;
@@ -308,7 +308,7 @@ LZ_TEST(nlist_refresh_single_keeps_a_still_list)
 	REPORT_IS(rep, 0, 0, 0, 0, 0, "one-copy refresh of a list that did not move");
 	ck_assert(lz_nlist_entries(nl) == entries);
 	for (size_t i = 0; i < N; i++)
-		ck_assert(nl->mark[i] == 0);
+		LZ_REQUIRE_TRUE(nl->mark[i] == 0);
 	lz_nlist_free(nl);
 }
 END_TEST

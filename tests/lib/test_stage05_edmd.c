@@ -284,26 +284,26 @@ LZ_TEST(edmd_block_is_the_touching_cells_with_their_shifts)
 				int k = a < e->dim ? 3 : 1;
 				if (e->wall[a])
 					k -= (coord(e, c, a) == 0) + (coord(e, c, a) == e->m[a] - 1);
-				ck_assert_msg(b.n[a] == k, "%dD, m = %d, walls %d, cell %u: %d cells of the "
+				LZ_REQUIRE(b.n[a] == k, "%dD, m = %d, walls %d, cell %u: %d cells of the "
 				              "block on axis %d, expected %d", e->dim, e->m[0], cases[q].walls,
 				              c, b.n[a], a, k);
 				want *= k;
 			}
 			char *seen = calloc(e->ncells, 1);
-			ck_assert(seen);
+			LZ_REQUIRE_TRUE(seen);
 			for (int z = 0; z < b.n[2]; z++)
 				for (int y = 0; y < b.n[1]; y++)
 					for (int x = 0; x < b.n[0]; x++, count++) {
 						uint32_t nb = b.off[0][x] + b.off[1][y] + b.off[2][z];
 						int idx[3] = {x, y, z};
-						ck_assert_msg(nb < e->ncells && !seen[nb], "cell %u: block cell %u "
+						LZ_REQUIRE(nb < e->ncells && !seen[nb], "cell %u: block cell %u "
 						              "twice or beyond the grid", c, nb);
 						seen[nb] = 1;
 						for (int a = 0; a < 3; a++) {
 							/* the neighbour's centre, shifted, is within one cell */
 							double mine = (coord(e, c, a) + 0.5) * e->w[a];
 							double its = (coord(e, nb, a) + 0.5) * e->w[a] + b.shift[a][idx[a]];
-							ck_assert_msg(fabs(fabs(its - mine) - e->w[a]) < 1e-9 ||
+							LZ_REQUIRE(fabs(fabs(its - mine) - e->w[a]) < 1e-9 ||
 							                      fabs(its - mine) < 1e-9,
 							              "%dD, m = %d, cell %u, block cell %u: on axis %d "
 							              "its centre %g shifted by %g is %g from the centre "
@@ -312,7 +312,7 @@ LZ_TEST(edmd_block_is_the_touching_cells_with_their_shifts)
 							              b.shift[a][idx[a]], its - mine, mine);
 						}
 					}
-			ck_assert_msg(count == want && seen[c], "%dD cell %u: %d block cells (want %d), "
+			LZ_REQUIRE(count == want && seen[c], "%dD cell %u: %d block cells (want %d), "
 			              "itself %s", e->dim, c, count, want, seen[c] ? "in" : "missing");
 			free(seen);
 		}
@@ -396,7 +396,7 @@ LZ_TEST(edmd_fall_time_is_the_first_root)
 			t_up = r1;
 		gsl_poly_solve_quadratic(-0.5 * g, v, x - lo, &r1, &r2);
 		double t_down = r2, want = fmin(t_up, t_down);
-		ck_assert_msg(fabs(t - want) <= 1e-10 * (1 + want) && up == (t_up <= t_down),
+		LZ_REQUIRE(fabs(t - want) <= 1e-10 * (1 + want) && up == (t_up <= t_down),
 		              "fall from x = %.10g at v = %.6g under g = %.4g in [%.6g, %.6g]: expected "
 		              "%s at t = %.12g, got %s at t = %.12g", x, v, g, lo, hi,
 		              t_up <= t_down ? "the top" : "the bottom", want, up ? "the top" : "the bottom",
@@ -442,26 +442,26 @@ LZ_TEST(edmd_place_lattice_places_and_refuses)
 		int dim = e->dim;
 		double P[3], over = lz_edmd_max_overlap(e, NULL, NULL);
 		lz_edmd_momentum(e, P);
-		ck_assert_msg(over == 0, "%dD lattice at η = %g: overlap %g", dim, ok[c].eta, over);
+		LZ_REQUIRE(over == 0, "%dD lattice at η = %g: overlap %g", dim, ok[c].eta, over);
 		if (e->n > 1) {
-			ck_assert_msg(fabs(P[0]) + fabs(P[1]) + fabs(P[2]) < 1e-10 * e->n, "%dD lattice: total "
+			LZ_REQUIRE(fabs(P[0]) + fabs(P[1]) + fabs(P[2]) < 1e-10 * e->n, "%dD lattice: total "
 			              "momentum (%g, %g, %g), expected 0", dim, P[0], P[1], P[2]);
-			ck_assert_msg(fabs(lz_edmd_temperature(e) - 1) < 1e-12, "%dD lattice: kT = %.15g, "
+			LZ_REQUIRE(fabs(lz_edmd_temperature(e) - 1) < 1e-12, "%dD lattice: kT = %.15g, "
 			              "expected 1", dim, lz_edmd_temperature(e));
 		}
 		for (uint32_t i = 0; i < e->n; i++)
 			for (int a = 0; a < 3; a++) {
 				double x = e->p[i].r[a];
 				if (a >= dim)
-					ck_assert_msg(x == 0 && e->p[i].v[a] == 0, "2D: z must be 0");
+					LZ_REQUIRE(x == 0 && e->p[i].v[a] == 0, "2D: z must be 0");
 				else if (e->wall[a])
-					ck_assert_msg(x >= 0.5 && x <= e->L - 0.5, "%dD, walls: %c = %g beyond the "
+					LZ_REQUIRE(x >= 0.5 && x <= e->L - 0.5, "%dD, walls: %c = %g beyond the "
 					              "contacts", dim, "xyz"[a], x);
 				else
-					ck_assert_msg(x >= 0 && x < e->L, "%dD: %c = %g outside [0, %g)", dim,
+					LZ_REQUIRE(x >= 0 && x < e->L, "%dD: %c = %g outside [0, %g)", dim,
 					              "xyz"[a], x, e->L);
 			}
-		ck_assert_msg(lz_edmd_audit(e) == LZ_OK, "%dD lattice: %s", dim, lz_error_message());
+		LZ_REQUIRE(lz_edmd_audit(e) == LZ_OK, "%dD lattice: %s", dim, lz_error_message());
 		lz_edmd_free(e);
 	}
 	/* 2D near close packing: no square lattice fits */
@@ -607,7 +607,7 @@ LZ_TEST(edmd_sort_renumbers_without_changing_the_trajectory)
 	              b->virial, lz_edmd_time(a), lz_edmd_time(b));
 	double *ra = sorted_positions(a), *rb = sorted_positions(b);
 	for (size_t k = 0; k < 3 * a->n; k++)
-		ck_assert_msg(ra[k] == rb[k], "sorted and unsorted runs: position %zu differs, %.17g / "
+		LZ_REQUIRE(ra[k] == rb[k], "sorted and unsorted runs: position %zu differs, %.17g / "
 		              "%.17g", k / 3, ra[k], rb[k]);
 	free(ra);
 	free(rb);
@@ -615,7 +615,7 @@ LZ_TEST(edmd_sort_renumbers_without_changing_the_trajectory)
 	ck_assert_msg(lz_edmd_sort(a) == LZ_OK && lz_edmd_audit(a) == LZ_OK, "sort: %s",
 	              lz_error_message());
 	for (uint32_t i = 1; i < a->n; i++)
-		ck_assert_msg(a->p[i].cell >= a->p[i - 1].cell, "after lz_edmd_sort particle %u is "
+		LZ_REQUIRE(a->p[i].cell >= a->p[i - 1].cell, "after lz_edmd_sort particle %u is "
 		              "in cell %u, after particle %u in cell %u: not in cell order", i,
 		              a->p[i].cell, i - 1, a->p[i - 1].cell);
 	for (uint32_t i = 0; i < a->n; i++)
@@ -643,21 +643,21 @@ LZ_TEST(edmd_rebase_keeps_the_clock_and_the_trajectory)
 	lz_edmd *b = lattice(3, 500, 0.3, LZ_EDMD_WALLS_NONE, 31);
 	for (int k = 0; k < 20; k++) {
 		for (int s = 0; s < 100; s++) {
-			ck_assert(lz_edmd_step(a) == 0);
-			ck_assert(lz_edmd_step(b) == 0);
+			LZ_REQUIRE_TRUE(lz_edmd_step(a) == 0);
+			LZ_REQUIRE_TRUE(lz_edmd_step(b) == 0);
 		}
 		double t = lz_edmd_time(b), now = b->now;
 		uint32_t top = lz_heap_top(b->heap);
 		lz_edmd_rebase(b);
-		ck_assert_msg(b->now == 0 && fabs(lz_edmd_time(b) - t) <= 1e-15 * t &&
+		LZ_REQUIRE(b->now == 0 && fabs(lz_edmd_time(b) - t) <= 1e-15 * t &&
 		                      fabs(b->t_base - t) <= 1e-15 * t,
 		              "after a re-base now = %g (want 0), the clock %.17g (was %.17g)", b->now,
 		              lz_edmd_time(b), t);
-		ck_assert_msg(lz_heap_top(b->heap) == top, "the re-base changed the heap's top");
+		LZ_REQUIRE(lz_heap_top(b->heap) == top, "the re-base changed the heap's top");
 		for (uint32_t i = 0; i < b->n; i++)
-			ck_assert_msg(b->p[i].t0 == 0, "after a re-base particle %u has t0 = %g", i,
+			LZ_REQUIRE(b->p[i].t0 == 0, "after a re-base particle %u has t0 = %g", i,
 			              b->p[i].t0);
-		ck_assert_msg(lz_edmd_audit(b) == LZ_OK, "after a re-base at now = %g: %s", now,
+		LZ_REQUIRE(lz_edmd_audit(b) == LZ_OK, "after a re-base at now = %g: %s", now,
 		              lz_error_message());
 	}
 	ck_assert_msg(b->rebases == 20, "20 re-bases counted as %u", b->rebases);
@@ -672,7 +672,7 @@ LZ_TEST(edmd_rebase_keeps_the_clock_and_the_trajectory)
 		lz_edmd_state(a, &a->p[i], a->now, ra, v);
 		lz_edmd_state(b, &b->p[i], b->now, rb, v);
 		for (int x = 0; x < 3; x++)
-			ck_assert_msg(fabs(ra[x] - rb[x]) < 1e-9, "particle %u: %c = %.15g with re-bases, "
+			LZ_REQUIRE(fabs(ra[x] - rb[x]) < 1e-9, "particle %u: %c = %.15g with re-bases, "
 			              "%.15g without", i, "xyz"[x], rb[x], ra[x]);
 	}
 	lz_edmd_free(a);
@@ -844,28 +844,28 @@ LZ_TEST(edmd_prefetch_is_on_for_big_systems_and_changes_nothing)
 		lz_edmd *b = lattice(dim, 1500, 0.3, walls ? LZ_EDMD_WALLS_BOX : LZ_EDMD_WALLS_NONE, 5);
 		a->prefetch = 0;
 		b->prefetch = 1;
-		ck_assert(lz_edmd_run(a, 30000, INFINITY) == LZ_OK &&
+		LZ_REQUIRE_TRUE(lz_edmd_run(a, 30000, INFINITY) == LZ_OK &&
 		          lz_edmd_run(b, 30000, INFINITY) == LZ_OK);
-		ck_assert_msg(a->collisions == b->collisions && a->virial == b->virial &&
+		LZ_REQUIRE(a->collisions == b->collisions && a->virial == b->virial &&
 		                      lz_edmd_time(a) == lz_edmd_time(b),
 		              "%dD: with and without prefetching, %llu / %llu collisions, virial "
 		              "%.17g / %.17g", dim, (unsigned long long)a->collisions,
 		              (unsigned long long)b->collisions, a->virial, b->virial);
 		for (uint32_t i = 0; i < a->n; i++)
-			ck_assert_msg(memcmp(&a->p[i], &b->p[i], sizeof a->p[i]) == 0,
+			LZ_REQUIRE(memcmp(&a->p[i], &b->p[i], sizeof a->p[i]) == 0,
 			              "%dD: particle %u differs with and without prefetching", dim, i);
 		lz_edmd_free(a);
 		lz_edmd_free(b);
 	}
 	/* a heap big enough for sift down's prefetches still pops in order */
 	lz_heap *h = lz_heap_alloc(LZ_HEAP_FAR + 1000);
-	ck_assert(h);
+	LZ_REQUIRE_TRUE(h);
 	for (uint32_t id = 0; id < h->cap; id++)
 		lz_heap_push(h, id, (double)((id * 2654435761u) % 1000003u));
 	double last = -1;
 	while (h->n > 0) {
 		double t = lz_heap_top_t(h);
-		ck_assert_msg(t >= last, "popped %g after %g", t, last);
+		LZ_REQUIRE(t >= last, "popped %g after %g", t, last);
 		last = t;
 		lz_heap_pop(h);
 	}
