@@ -151,14 +151,12 @@ test: need-stage
 	@$(BUILD)/tests/$(call stage_named,$(STAGE)) $(foreach r,$(call rubrics,$(call stage_named,$(STAGE))),--rubric $(r))
 
 grade:
-	@$(MAKE) --no-print-directory $(REPORT)
 	@bash tests/grade/grade.sh --build "$(BUILD)" --submission "$(SUBMISSION)" \
 	  --stage "$(STAGE)" --isolate "$(ISOLATE)" $(if $(OUT),--out "$(OUT)")
 
 grade-all:
 	@if [ -z "$(SUBS)" ]; then echo "make grade-all: SUBS=dir (one sub-directory or .tar.gz per student)" >&2; exit 2; fi
-	@$(MAKE) --no-print-directory $(REPORT)
-	@bash tests/grade/grade.sh --build "$(BUILD)" --all "$(SUBS)" --stage "$(STAGE)" --isolate "$(ISOLATE)"
+	@bash tests/grade/grade.sh --build "$(BUILD)" --all "$(SUBS)" --stage "$(STAGE)" --isolate "$(ISOLATE)" $(if $(OUT),--out "$(OUT)")
 
 # A lesson's experiments: drivers, then plots, then the stage's scenes (QUICK=1: demo size).
 lesson: need-stage all

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# grade.sh — the autograder (DESIGN §6). `make grade` and `make grade-all` call it.
+# grade.sh — the autograder. `make grade` and `make grade-all` call it.
 #
 #   grade.sh --build BUILD [--submission DIR|X.tar.gz|X.tgz] [--stage NN] [--isolate 0|1]
 #            [--out DIR]
@@ -8,19 +8,34 @@
 # A submission is a directory or a .tar.gz; empty means this tree's own assignments/
 # (the stubs in the instructor's tree, the student's work in a handout). For each
 # stage the files its tests/NN-name/MANIFEST lists are looked up in the submission at
-# <path>, NN-name/<file> or <file>, and copied onto a clean scratch copy of this tree
-# (links, special files, files over 1 MiB and '..' are refused; a missing file keeps
-# the stub). The stage's test binary is built there (--isolate 1 links the reference
-# solutions for every other stage), and run under timeout and ulimit. Then every
-# file the student's code could have written is deleted and lz-report, which links
-# no student code, writes the reports from what this script captured itself:
-# OUT/report.txt (and the table on stdout), results.json (Gradescope), junit.xml and
-# results.tap. OUT defaults to BUILD/grade. --all grades every sub-directory and
-# .tar.gz of SUBS into OUT/<student>/ and writes OUT/gradebook.csv.
+# <path>, NN-name/<file> or <file> and copied onto a clean scratch copy of this tree.
 #
-# The graded objects may define only lz_ functions (static helpers are fine) and no
-# code that runs before or after main: both would let a submission write the
-# runner's results itself, so such a stage is rejected.
+# Every stage is graded on its own build, so one stage's mistakes cost that stage
+# only:
+#   - A file that cannot be taken — a symbolic or hard link, a special file, a path
+#     with '..' or an absolute one (in a tarball such entries are never unpacked),
+#     a file outside the submission or over 1 MiB — is refused: its stub is graded
+#     in its place, and the stage's status says why. A missing file keeps its stub.
+#   - Each stage's files are compiled on their own. A stage that does not compile, or
+#     whose objects define anything but lz_ functions or run code before or after
+#     main, scores 0, with the compiler's errors in its visible NN-name/build test;
+#     the other stages link the reference for it, and their reports say so.
+#   - Each stage's test program is linked and run on its own, under timeout and
+#     ulimit (the runner gives every test its own process: a crash, a loop or a flood
+#     costs that test only). A stage that links only against the reference of the
+#     other stages is graded that way, and says so. --isolate 1 does that for every
+#     stage, so an early bug is never charged twice.
+# Then every file the student's code could have written is deleted, and lz-report,
+# which links no student code, writes the reports from what this script captured
+# itself: OUT/report.txt (and the table on stdout), results.json (Gradescope),
+# junit.xml and results.tap. OUT defaults to BUILD/grade. --all grades every
+# sub-directory and .tar.gz of SUBS into OUT/<student>/ and writes OUT/gradebook.csv
+# (a score and a status per stage); its OUT defaults to BUILD/grade-all.
+#
+# What no student code touches — the library, the tests, the reference and the stubs
+# — is compiled once into BUILD/grade-cache (rebuilt when the sources change) and
+# copied into every scratch tree, so grading a class compiles only the students'
+# files.
 #
 # Limits: the student's code runs as the user who grades. This script defends against
 # crashes, endless loops, floods of output and naive forgery (files claiming full
@@ -36,6 +51,7 @@ ULIMIT_V=$((4 * 1024 * 1024))       # KiB: address space of each test process
 SLACK=30                            # seconds on top of the rubric's timeouts
 JOBS=$(nproc 2>/dev/null || echo 2)
 [ "$JOBS" -le 8 ] || JOBS=8
+SOURCES="Makefile lib tests datasets lessons assignments solutions"
 
 die() {
 	echo "grade: $*" >&2
@@ -103,36 +119,47 @@ budget_of() {  # budget_of STAGE: the rubric timeouts summed, plus slack, in sec
 
 # ---- the submission ------------------------------------------------------------
 
-# Refuse a tarball with links, special files, absolute paths or '..'; print why.
-tarball_problem() {  # tarball_problem FILE
-	local listing=() names=() i
-	mapfile -t listing < <(tar -tvzf "$1" 2>/dev/null) || true
-	mapfile -t names < <(tar -tzf "$1" 2>/dev/null) || true
-	if ! tar -tzf "$1" >/dev/null 2>&1 || [ ${#listing[@]} -ne ${#names[@]} ]; then
-		echo "it is not a readable .tar.gz"
-		return
-	fi
+# The entries of a tarball that are never unpacked, as "NAME<TAB>why" lines into
+# REFUSED; the entries that are, one per line, into ACCEPTED. Returns 1 when the file
+# is not a readable .tar.gz.
+read_tarball() {  # read_tarball FILE ACCEPTED REFUSED
+	local listing=() names=() i why
+	: >"$2"
+	: >"$3"
+	tar -tzf "$1" >/dev/null 2>&1 || return 1
+	mapfile -t listing < <(tar -tvzf "$1" 2>/dev/null)
+	mapfile -t names < <(tar -tzf "$1" 2>/dev/null)
+	[ ${#listing[@]} -eq ${#names[@]} ] || return 1
 	for i in "${!names[@]}"; do
+		why=
 		case ${listing[$i]:0:1} in
 		- | d) ;;
-		l) echo "it contains a symbolic link: ${names[$i]}"; return ;;
-		h) echo "it contains a hard link: ${names[$i]}"; return ;;
-		*) echo "it contains a special file: ${names[$i]}"; return ;;
+		l) why="it is a symbolic link" ;;
+		h) why="it is a hard link" ;;
+		*) why="it is a special file" ;;
 		esac
 		case "/${names[$i]}/" in
-		//*) echo "it contains an absolute path: ${names[$i]}"; return ;;
-		*/../*) echo "it contains a path with '..': ${names[$i]}"; return ;;
+		//*) why="it is an absolute path" ;;
+		*/../*) why="its path has '..'" ;;
 		esac
+		if [ -n "$why" ]; then
+			printf '%s\t%s\n' "${names[$i]}" "$why" >>"$3"
+		elif [ "${listing[$i]:0:1}" = - ]; then
+			printf '%s\n' "${names[$i]}" >>"$2"
+		fi
 	done
 }
 
-# Unpack a checked tarball into DEST; print the directory that holds the submission
-# (a tarball of one top-level directory is looked into).
-unpack() {  # unpack FILE DEST
+# Unpack the accepted regular files of FILE into DEST; print the directory that holds
+# the submission (a tarball of one top-level directory is looked into).
+unpack() {  # unpack FILE DEST ACCEPTED
 	local dest=$2 only depth
 	mkdir -p "$dest"
-	(ulimit -f $((100 * 1024)) && tar -xzf "$1" -C "$dest" --no-same-owner \
-		--no-same-permissions --no-overwrite-dir) >/dev/null 2>&1 || return 1
+	if [ -s "$3" ]; then
+		(ulimit -f $((100 * 1024)) && tar -xzf "$1" -C "$dest" --no-same-owner \
+			--no-same-permissions --no-overwrite-dir --verbatim-files-from -T "$3") \
+			>/dev/null 2>&1 || return 1
+	fi
 	for depth in 1 2 3; do
 		only=$(only_entry "$dest")
 		if [ -z "$only" ] || [ ! -d "$only" ] || [ -L "$only" ]; then
@@ -186,40 +213,95 @@ file_problem() {  # file_problem SUB FILE
 	fi
 }
 
-# Copy every manifest file of every stage from the submission onto the scratch tree,
-# writing the notes for each stage into PRIV/notes-STAGE.
-copy_submission() {  # copy_submission SUB SCRATCH PRIV
+# Why the tarball entry that stands for a manifest path was not unpacked (empty when
+# none does): an entry stands for assignments/NN-name/F.c when it ends in F.c and
+# names no other stage.
+entry_problem() {  # entry_problem STAGE PATH REFUSED
+	local file=${2##*/} name why other st
+	[ -s "$3" ] || return 0
+	while IFS=$'\t' read -r name why; do
+		[ "${name##*/}" = "$file" ] || continue
+		other=0
+		for st in $ALL_STAGES; do
+			[ "$st" != "$1" ] && [[ /$name/ == */"$st"/* ]] && other=1
+		done
+		[ "$other" -eq 1 ] && continue
+		echo "$why ($name)"
+		return
+	done <"$3"
+}
+
+# Copy every manifest file of every stage from the submission onto the scratch tree.
+# For each stage PRIV/notes-STAGE gets the notes for its build test and
+# PRIV/refused-STAGE the files that were refused.
+copy_submission() {  # copy_submission SUB SCRATCH PRIV REFUSED_ENTRIES
 	local sub=$1 scratch=$2 priv=$3 st p c why
 	for st in $ALL_STAGES; do
 		: >"$priv/notes-$st"
+		: >"$priv/refused-$st"
 		for p in $(manifest_of "$st"); do
-			c=$(locate "$sub" "$st" "$p")
-			if [ -z "$c" ]; then
-				echo "$p: not in the submission, the stub was kept" >>"$priv/notes-$st"
-				continue
-			fi
-			why=$(file_problem "$sub" "$c")
+			why=$(entry_problem "$st" "$p" "$4")
+			c=
+			[ -n "$why" ] || c=$(locate "$sub" "$st" "$p")
+			[ -n "$why" ] || [ -z "$c" ] || why=$(file_problem "$sub" "$c")
 			if [ -n "$why" ]; then
-				echo "$p: refused, $why; the stub was kept" >>"$priv/notes-$st"
-				continue
+				echo "${p##*/}: $why" >>"$priv/refused-$st"
+				echo "$p was refused ($why): its stub was graded instead" >>"$priv/notes-$st"
+			elif [ -z "$c" ]; then
+				echo "$p is not in the submission: its stub was graded" >>"$priv/notes-$st"
+			else
+				cat -- "$c" >"$scratch/$p"
 			fi
-			mkdir -p "$scratch/$(dirname "$p")"
-			cat -- "$c" >"$scratch/$p"
-			[ "${c#"$sub"/}" = "$p" ] || echo "$p: taken from ${c#"$sub"/}" >>"$priv/notes-$st"
 		done
 	done
 }
 
-# A clean copy of the tree: sources only, no build/ and no .git.
+# ---- the build cache ------------------------------------------------------------------
+
+# What the cache depends on: the sources and the compiler.
+source_key() {
+	(
+		cd "$ROOT"
+		# shellcheck disable=SC2086
+		find $SOURCES -path tests/grade/fixtures -prune -o -type f -print0 | sort -z |
+			xargs -0 sha1sum
+		cc --version 2>&1 | head -n 1
+	) | sha1sum | cut -d' ' -f1
+}
+
+# BUILD/grade-cache/tree: a copy of the sources with every object that no student
+# code affects, built for both implementations (stubs last, as a scratch tree starts).
+prepare_cache() {
+	local key new st targets=()
+	key=$(source_key)
+	[ "$(cat "$CACHE/key" 2>/dev/null)" = "$key" ] && return
+	echo "grade: compiling the library, the tests, the reference and the stubs once into $CACHE" >&2
+	new=$CACHE.new.$$
+	rm -rf "$new"
+	mkdir -p "$new/tree"
+	# shellcheck disable=SC2086
+	(cd "$ROOT" && cp -R $SOURCES "$new/tree/")
+	rm -rf "$new/tree/tests/grade/fixtures"
+	for st in $ALL_STAGES; do
+		targets+=("build/grade/tests/$st")
+	done
+	scratch_make "$new/tree" -j"$JOBS" BUILD=build/grade IMPL=solutions "${targets[@]}" \
+		build/grade/bin/lz-report >"$new/build.log" 2>&1 &&
+		scratch_make "$new/tree" -j"$JOBS" BUILD=build/grade IMPL=assignments "${targets[@]}" \
+			>>"$new/build.log" 2>&1 ||
+		{ sed -E '/^  (CC|LD|AR) /d' "$new/build.log" | head -n 30 >&2; rm -rf "$new"; die "this tree does not build"; }
+	echo "$key" >"$new/key"
+	rm -rf "$CACHE"
+	mv "$new" "$CACHE"
+}
+
+# A clean copy of the tree for one submission: the cached sources and objects, their
+# times kept, so that only the files copied in afterwards are compiled again.
 make_scratch() {  # make_scratch SCRATCH
-	local d
 	[ ! -e "$1" ] || chmod -R u+rwX "$1" 2>/dev/null || true
 	rm -rf "$1"
-	mkdir -p "$1"
-	for d in Makefile lib tests datasets lessons assignments solutions; do
-		[ -e "$ROOT/$d" ] && cp -R "$ROOT/$d" "$1/"
-	done
-	rm -rf "$1/tests/grade/fixtures"
+	mkdir -p "$(dirname "$1")"
+	cp -a "$CACHE/tree" "$1"
 }
 
 # ---- build and run -----------------------------------------------------------------
@@ -234,45 +316,34 @@ scratch_make() {  # scratch_make SCRATCH ARGS...
 		make -C "$scratch" --no-print-directory SANITIZE=0 "$@"
 }
 
-# The build variables for a stage: every stage the student's, or (isolate) only this
-# one and the reference for the others. Printed one per line.
-build_vars() {  # build_vars STAGE
-	local nn=${1%%-*}
-	if [ "$ISOLATE" = 1 ]; then
-		printf '%s\n' "BUILD=build/grade-$nn" IMPL=solutions "IMPL_$nn=assignments"
-	else
-		printf '%s\n' BUILD=build/grade IMPL=assignments
-	fi
+# The compiler's output of a make run, without make's progress lines.
+compiler_output() {  # compiler_output RAW LOG
+	sed -E '/^  (CC|LD|AR) /d; /^make(\[[0-9]+\])?: /d' "$1" >"$2"
 }
 
-# Build the stage's test binary; the compiler's output (without make's progress
-# lines) goes to LOG. A failed parallel build is redone serially with -k, so the log
-# lists every error in a stable order.
-build_stage() {  # build_stage SCRATCH STAGE LOG
-	local scratch=$1 st=$2 log=$3 vars bdir
-	mapfile -t vars < <(build_vars "$st")
-	bdir=${vars[0]#BUILD=}
-	if scratch_make "$scratch" -j"$JOBS" "${vars[@]}" "$bdir/tests/$st" >"$log.raw" 2>&1; then
-		: >"$log"
+# Compile the student's files of one stage, alone. Failures leave the compiler's
+# errors in LOG (a serial -k rerun, so every error shows, in a stable order).
+compile_stage() {  # compile_stage SCRATCH STAGE LOG
+	local scratch=$1 st=$2 log=$3 objs=() f
+	for f in "$scratch/assignments/$st"/*.c; do
+		objs+=("build/grade/obj/assignments/$st-$(basename "$f" .c).o")
+	done
+	if scratch_make "$scratch" -j"$JOBS" BUILD=build/grade IMPL=assignments "${objs[@]}" \
+		>"$log.raw" 2>&1; then
 		return 0
 	fi
-	scratch_make "$scratch" -k "${vars[@]}" "$bdir/tests/$st" >"$log.raw" 2>&1 || true
-	sed -E '/^  (CC|LD|AR) /d' "$log.raw" >"$log"
+	scratch_make "$scratch" -k BUILD=build/grade IMPL=assignments "${objs[@]}" >"$log.raw" 2>&1 || true
+	compiler_output "$log.raw" "$log"
 	return 1
 }
 
 # The graded objects may define only lz_ symbols and must not run code outside the
 # calls the tests make (constructors, destructors). Prints the problems.
 object_problems() {  # object_problems SCRATCH STAGE
-	local dir o base src st
-	dir=$1/$(build_vars "$2" | head -n 1 | cut -d= -f2)/obj/assignments
-	for o in "$dir"/*.o; do
+	local o src
+	for o in "$1/build/grade/obj/assignments/$2"-*.o; do
 		[ -e "$o" ] || continue
-		base=$(basename "$o" .o)
-		src=$base
-		for st in $ALL_STAGES; do
-			[ "${base#"$st"-}" = "$base" ] || src="assignments/$st/${base#"$st"-}.c"
-		done
+		src=assignments/$2/$(basename "$o" .o | sed "s/^$2-//").c
 		nm -g --defined-only "$o" | awk -v f="$src" '$NF !~ /^lz_/ {
 			printf "%s defines the global symbol %s: a graded file may define only lz_ functions (make helpers static)\n", f, $NF }'
 		if objdump -h "$o" | grep -Eq '\.(init_array|fini_array|preinit_array|ctors|dtors)'; then
@@ -281,13 +352,45 @@ object_problems() {  # object_problems SCRATCH STAGE
 	done
 }
 
+# The implementation choice for one stage's test program: the student's code for
+# the stages that compiled, the reference for the others; with ISOLATE (or ALONE)
+# the reference for every stage but this one.
+stage_vars() {  # stage_vars STAGE ALONE
+	local st
+	if [ "$ISOLATE" = 1 ] || [ "$2" = 1 ]; then
+		printf '%s\n' IMPL=solutions "IMPL_${1%%-*}=assignments"
+		return
+	fi
+	echo IMPL=assignments
+	for st in $BROKEN; do
+		echo "IMPL_${st%%-*}=solutions"
+	done
+}
+
+# Link the stage's test program; print how (student, alone) or fail with the errors
+# in LOG. When the student's other stages do not link with it, try it alone.
+link_stage() {  # link_stage SCRATCH STAGE LOG
+	local scratch=$1 st=$2 log=$3 vars alone
+	for alone in 0 1; do
+		[ "$alone" = 1 ] && [ "$ISOLATE" = 1 ] && break
+		mapfile -t vars < <(stage_vars "$st" "$alone")
+		if scratch_make "$scratch" -j"$JOBS" BUILD=build/grade "${vars[@]}" \
+			"build/grade/tests/$st" >"$log.raw" 2>&1; then
+			cp "$scratch/build/grade/tests/$st" "$scratch/build/grade/tests/$st.graded"
+			echo "$alone"
+			return 0
+		fi
+	done
+	compiler_output "$log.raw" "$log"
+	return 1
+}
+
 # Run the stage's tests in machine mode under timeout and ulimit, from the scratch
-# root, with the environment reset (CK_FORK=yes: a crash costs one test). The runner's
-# stdout and stderr go to CAPTURE; the tests' own output to the log in the scratch
-# tree, which is never read. Prints the exit status.
-run_stage() {  # run_stage SCRATCH STAGE BUDGET CAPTURE
-	local scratch=$1 st=$2 budget=$3 cap=$4 bdir args=() r status=0
-	bdir=$(build_vars "$st" | head -n 1 | cut -d= -f2)
+# root, with the environment reset (CK_FORK=yes). The runner's stdout and stderr go
+# to CAPTURE; the tests' own output to a log in the scratch tree, which is never
+# read. The exit status goes to STATUS.
+run_stage() {  # run_stage SCRATCH STAGE BUDGET CAPTURE STATUS
+	local scratch=$1 st=$2 budget=$3 args=() r status=0
 	for r in $(rubrics_of "$st"); do
 		args+=(--rubric "$r")
 	done
@@ -298,72 +401,126 @@ run_stage() {  # run_stage SCRATCH STAGE BUDGET CAPTURE
 		ulimit -v "$ULIMIT_V" || true
 		ulimit -t $((budget + 10)) || true
 		exec env -i PATH="$PATH" HOME="${HOME:-/tmp}" LC_ALL=C CK_FORK=yes \
-			timeout -k 5 "$budget" "$bdir/tests/$st" "${args[@]}" \
-			--machine --log "$bdir/test-output.log"
-	) >"$cap" 2>&1 </dev/null || status=$?
-	echo "$status"
+			timeout -k 5 "$budget" "build/grade/tests/$st.graded" "${args[@]}" \
+			--machine --log "build/grade/$st-output.log"
+	) >"$4" 2>&1 </dev/null || status=$?
+	echo "$status" >"$5"
 }
 
 # ---- one submission ----------------------------------------------------------------
 
-# Grade SUB (a directory, or '' after a refused tarball with REFUSED set) into a spec
-# for lz-report in PRIV. Everything the student's code can touch is under SCRATCH.
-grade_submission() {  # grade_submission SUB LABEL SCRATCH PRIV REFUSED
-	local sub=$1 label=$2 scratch=$3 priv=$4 refused=$5 st spec=$4/spec
-	echo "title $label" >"$spec"
-	if [ -n "$refused" ]; then
+# Grade SUB (a directory, or '' for an unreadable tarball, with UNREADABLE saying why)
+# into a spec for lz-report in PRIV. Everything the student's code can touch is under
+# SCRATCH.
+grade_submission() {  # grade_submission SUB LABEL SCRATCH PRIV UNREADABLE REFUSED_ENTRIES
+	local sub=$1 label=$2 scratch=$3 priv=$4 st
+	echo "title $label" >"$priv/spec"
+	if [ -n "$5" ]; then
 		for st in $STAGES; do
-			echo "the submission was refused: $refused" >"$priv/build-$st.log"
-			{
-				echo "stage $st"
-				rubric_lines "$st"
-				echo "build rejected $priv/build-$st.log"
-			} >>"$spec"
+			echo "the submission could not be read: $5" >"$priv/build-$st.log"
+			{ stage_head "$st" "$priv"; echo "build unreadable $priv/build-$st.log"; } >>"$priv/spec"
 		done
 		return
 	fi
 	make_scratch "$scratch"
-	copy_submission "$sub" "$scratch" "$priv"
+	copy_submission "$sub" "$scratch" "$priv" "$6"
+	compile_all "$scratch" "$priv"
 	for st in $STAGES; do
-		grade_stage "$scratch" "$st" "$priv" >>"$spec"
+		case " $BROKEN " in *" $st "*) continue ;; esac
+		echo "grade: linking the tests of $st" >&2
+		if link_stage "$scratch" "$st" "$priv/build-$st.log" >"$priv/alone-$st"; then
+			echo linked >"$priv/state-$st"
+		else
+			echo nolink >"$priv/state-$st"
+		fi
+	done
+	run_all "$scratch" "$priv"
+	for st in $STAGES; do
+		stage_spec "$st" "$priv" >>"$priv/spec"
 	done
 	chmod -R u+rwX "$scratch" 2>/dev/null || true
 	rm -rf "$scratch"
 }
 
-rubric_lines() {  # rubric_lines STAGE
-	local r
-	for r in $(rubrics_of "$1"); do
-		echo "rubric $ROOT/$r"
+# Compile every stage's files on its own; BROKEN lists the stages that did not
+# compile or whose objects were refused.
+compile_all() {  # compile_all SCRATCH PRIV
+	local scratch=$1 priv=$2 st problems
+	BROKEN=
+	for st in $ALL_STAGES; do
+		echo "grade: compiling $st" >&2
+		if ! compile_stage "$scratch" "$st" "$priv/build-$st.log"; then
+			echo failed >"$priv/state-$st"
+			BROKEN="$BROKEN $st"
+			continue
+		fi
+		problems=$(object_problems "$scratch" "$st")
+		if [ -n "$problems" ]; then
+			echo "$problems" >"$priv/build-$st.log"
+			echo rejected >"$priv/state-$st"
+			BROKEN="$BROKEN $st"
+		fi
 	done
 }
 
-# Build, check and run one stage; print its part of the spec.
-grade_stage() {  # grade_stage SCRATCH STAGE PRIV
-	local scratch=$1 st=$2 priv=$3 log=$3/build-$2.log budget problems status n
-	budget=$(budget_of "$st")
-	echo "stage $st"
-	rubric_lines "$st"
+# Run the linked stages, JOBS at a time.
+run_all() {  # run_all SCRATCH PRIV
+	local scratch=$1 priv=$2 st
+	for st in $STAGES; do
+		[ "$(cat "$priv/state-$st")" = linked ] || continue
+		while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do
+			wait -n || true
+		done
+		echo "grade: running the tests of $st (at most $(budget_of "$st") s)" >&2
+		run_stage "$scratch" "$st" "$(budget_of "$st")" "$priv/capture-$st" "$priv/exit-$st" &
+	done
+	wait
+	for st in $STAGES; do
+		[ -e "$priv/capture-$st" ] || continue
+		head -c "$MAX_CAPTURE" "$priv/capture-$st" >"$priv/results-$st"
+		rm -f "$priv/capture-$st"
+	done
+}
+
+stage_head() {  # stage_head STAGE PRIV: the spec lines every stage starts with
+	local r n
+	echo "stage $1"
+	for r in $(rubrics_of "$1"); do
+		echo "rubric $ROOT/$r"
+	done
+	if [ -f "$ROOT/tests/grade/hidden-points" ]; then
+		awk -v s="$1" '$1 == s { print "hidden-elsewhere " $2 }' "$ROOT/tests/grade/hidden-points"
+	fi
 	while IFS= read -r n; do
 		echo "note $n"
-	done <"$priv/notes-$st"
-	echo "grade: building $st" >&2
-	if ! build_stage "$scratch" "$st" "$log"; then
-		echo "build failed $log"
-		return
-	fi
-	problems=$(object_problems "$scratch" "$st")
-	if [ -n "$problems" ]; then
-		echo "$problems" >"$log"
-		echo "build rejected $log"
-		return
+	done < <(cat "$2/notes-$1" 2>/dev/null)
+	while IFS= read -r n; do
+		echo "refused $n"
+	done < <(cat "$2/refused-$1" 2>/dev/null)
+}
+
+# The spec of one stage, from what compile_all, link_stage and run_all left in PRIV.
+stage_spec() {  # stage_spec STAGE PRIV
+	local st=$1 priv=$2 b
+	stage_head "$st" "$priv"
+	case $(cat "$priv/state-$st") in
+	failed) echo "build failed $priv/build-$st.log"; return ;;
+	rejected) echo "build rejected $priv/build-$st.log"; return ;;
+	nolink) echo "note its test program did not link (the linker's errors are below)"
+		echo "build failed $priv/build-$st.log"; return ;;
+	esac
+	if [ "$(cat "$priv/alone-$st")" = 1 ]; then
+		echo "note the code of the other stages did not link with this stage's tests: it was graded against the reference for every other stage"
+	elif [ "$ISOLATE" = 1 ]; then
+		echo "note graded on its own (ISOLATE=1): the reference was linked for every other stage"
+	else
+		for b in $BROKEN; do
+			[[ $b < $st ]] && echo "note $b did not compile: its reference was linked so that this stage could be graded"
+		done
 	fi
 	echo "build ok"
-	echo "grade: running the tests of $st (at most $budget s)" >&2
-	status=$(run_stage "$scratch" "$st" "$budget" "$priv/capture-$st")
-	head -c "$MAX_CAPTURE" "$priv/capture-$st" >"$priv/results-$st"
-	rm -f "$priv/capture-$st"
-	printf 'results %s\nexit %s\nbudget %s\n' "$priv/results-$st" "$status" "$budget"
+	printf 'results %s\nexit %s\nbudget %s\n' "$priv/results-$st" "$(cat "$priv/exit-$st")" \
+		"$(budget_of "$st")"
 }
 
 # ---- the output directory ------------------------------------------------------------
@@ -381,18 +538,23 @@ clear_out() {  # clear_out OUT
 	echo "lozenge grader output: cleared and rewritten on every grade" >"$out/.lz-grade"
 }
 
-# Resolve a submission into a directory; sets SUB_DIR and SUB_REFUSED.
+# Resolve a submission into a directory: sets SUB_DIR, SUB_UNREADABLE and, for a
+# tarball, PRIV/refused-entries.
 resolve() {  # resolve PATH PRIV
-	SUB_REFUSED=
+	SUB_UNREADABLE=
+	: >"$2/refused-entries"
 	if [ -z "$1" ]; then
 		SUB_DIR=$ROOT
 	elif [ -d "$1" ]; then
 		SUB_DIR=$(abspath "$1")
 	elif [ -f "$1" ] && [[ $1 == *.tar.gz || $1 == *.tgz ]]; then
 		SUB_DIR=
-		SUB_REFUSED=$(tarball_problem "$1")
-		[ -n "$SUB_REFUSED" ] && return
-		SUB_DIR=$(unpack "$1" "$2/unpacked") || SUB_REFUSED="it could not be unpacked (too large, or damaged)"
+		if ! read_tarball "$1" "$2/accepted-entries" "$2/refused-entries"; then
+			SUB_UNREADABLE="it is not a readable .tar.gz"
+			return
+		fi
+		SUB_DIR=$(unpack "$1" "$2/unpacked" "$2/accepted-entries") ||
+			SUB_UNREADABLE="it could not be unpacked (too large, or damaged)"
 	else
 		die "submission '$1' is neither a directory nor a .tar.gz/.tgz file"
 	fi
@@ -401,7 +563,8 @@ resolve() {  # resolve PATH PRIV
 grade_one() {  # grade_one SUBMISSION
 	local label=${1:-"this tree's assignments/"}
 	resolve "$1" "$PRIV"
-	grade_submission "$SUB_DIR" "$label" "$OUT/scratch" "$PRIV" "$SUB_REFUSED"
+	grade_submission "$SUB_DIR" "$label" "$OUT/scratch" "$PRIV" "$SUB_UNREADABLE" \
+		"$PRIV/refused-entries"
 	clear_out "$OUT"
 	"$REPORT" --out "$OUT" --spec "$PRIV/spec"
 	echo "reports: $OUT/report.txt results.json junit.xml results.tap"
@@ -437,7 +600,8 @@ grade_all() {  # grade_all SUBS
 		mkdir -p "$priv"
 		echo "grade: == $name" >&2
 		resolve "$e" "$priv"
-		grade_submission "$SUB_DIR" "$name" "$OUT/scratch" "$priv" "$SUB_REFUSED"
+		grade_submission "$SUB_DIR" "$name" "$OUT/scratch" "$priv" "$SUB_UNREADABLE" \
+			"$priv/refused-entries"
 		"$REPORT" --quiet --out "$PRIV/reports/$name" --spec "$priv/spec" \
 			--gradebook "$PRIV/gradebook.csv" --student "$name"
 		grep '^Score:' "$PRIV/reports/$name/report.txt" | sed "s/^/$name: /"
@@ -475,22 +639,29 @@ case $ISOLATE in 0 | 1) ;; *) die "--isolate is 0 or 1, not '$ISOLATE'" ;; esac
 if [ "$ISOLATE" = 1 ] && [ ! -d "$ROOT/solutions" ]; then
 	die "ISOLATE=1 links the reference solutions for the stages not graded, and this tree has no solutions/ (a student handout): grade without ISOLATE"
 fi
-for tool in timeout tar nm objdump make; do
+for tool in timeout tar nm objdump make sha1sum; do
 	command -v "$tool" >/dev/null || die "'$tool' is needed and not installed"
 done
+if [ ! -d "$ROOT/solutions" ]; then
+	SOURCES="Makefile lib tests datasets lessons assignments"
+fi
 
 BUILD_DIR=$(abspath "$BUILD_DIR")
-OUT=$(abspath "${OUT:-$BUILD_DIR/grade}")
+if [ -n "$ALL" ]; then
+	OUT=$(abspath "${OUT:-$BUILD_DIR/grade-all}")
+else
+	OUT=$(abspath "${OUT:-$BUILD_DIR/grade}")
+fi
 [ -z "$SUBMISSION" ] || SUBMISSION=$(abspath "$SUBMISSION")
 [ -z "$ALL" ] || ALL=$(abspath "$ALL")
-REPORT=$BUILD_DIR/bin/lz-report
-(cd "$ROOT" && make --no-print-directory BUILD="$BUILD_DIR" "$REPORT" >&2) ||
-	die "cannot build $REPORT"
+CACHE=$BUILD_DIR/grade-cache
 ALL_STAGES=$(select_stages "")
 STAGES=$(select_stages "$STAGE")
 # OUT is emptied: never the tree, a directory holding it, or one of its sources.
 case $ROOT/ in "$OUT"/*) die "--out $OUT holds the source tree" ;; esac
 case $OUT in "$ROOT"/build*) ;; "$ROOT"/*) die "--out $OUT: inside the sources (use a directory under build/)" ;; esac
+prepare_cache
+REPORT=$CACHE/tree/build/grade/bin/lz-report
 
 # Private working files (specs, captured output, reports before they are moved): not
 # under OUT, where the student's code runs.

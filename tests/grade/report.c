@@ -12,21 +12,30 @@
  *   title TEXT            what was graded (shown on top of the report)
  *   stage NN-name         starts a stage; the lines below belong to it
  *   rubric PATH           a rubric file of the stage (repeat for hidden/rubric ...)
- *   build ok|failed|rejected [LOG]   the build, and the compiler's output
+ *   build ok|failed|rejected|unreadable [LOG]   the build, and the compiler's output
+ *                         (rejected: the objects broke the grader's rules; unreadable:
+ *                         the submission could not be read at all)
  *   results PATH          what the test runner printed (stdout and stderr, captured)
  *   exit N                the runner's exit status as the shell saw it (124: timeout)
  *   budget S              the seconds the whole test program was allowed
  *   note TEXT             a line for the stage's "build" pseudo-test
+ *   refused TEXT          a file of the stage the grader refused, and why (its stub
+ *                         was graded instead); the stage's status says so
+ *   hidden-elsewhere N    N more points of the stage are in hidden tests that this
+ *                         tree does not have (a student's handout)
  *
  * Every rubric test gets a result. Only LZRESULT lines between LZBEGIN and LZEND
  * count, and the last line for a test wins (an LZBEGIN starts afresh, so only the
  * runner's own block, printed last, counts); a test the runner did not report scores
  * 0 with the reason (did not compile, crashed, timed out). A test scores its points
- * on pass and 0 otherwise.
+ * on pass and 0 otherwise. Tests from a rubric under a hidden/ directory are hidden
+ * tests (not in the student handout); the report says how many points they carry.
+ * Every stage gets a status: graded, did not compile, refused: why, or unreadable.
  *
  * DIR receives report.txt (also printed), results.json (Gradescope), junit.xml and
  * results.tap (TAP version 13). --gradebook appends the student's row to a CSV
- * (student, one column per stage, total, max), writing its header when new.
+ * (student, a score and a status column per stage, total, max), writing its header
+ * when new.
  * Exit status: 0 when the reports were written, 2 otherwise.
  */
 #include <errno.h>
@@ -42,7 +51,7 @@
 #define MSG_COLUMNS 100   /* the table shows this much of a message */
 
 typedef enum { R_MISSING, R_PASS, R_FAIL, R_ERROR, R_TIMEOUT } result;
-typedef enum { B_NONE, B_OK, B_FAILED, B_REJECTED } build_state;
+typedef enum { B_NONE, B_OK, B_FAILED, B_REJECTED, B_UNREADABLE } build_state;
 
 typedef struct {
 	char **v;
@@ -55,6 +64,7 @@ typedef struct {
 	char *visibility;
 	result res;
 	char *message;
+	int hidden;          /* from a hidden/ rubric: not in the student handout */
 } test;
 
 typedef struct {
@@ -67,7 +77,9 @@ typedef struct {
 	int exit_status;     /* -1: not given */
 	double budget;       /* 0: not given */
 	strlist notes;
+	strlist refused;     /* files the grader refused, and why */
 	strlist said;        /* runner output that is not protocol */
+	double hidden_elsewhere;  /* points of hidden tests this tree does not have */
 	int saw_begin, saw_end;
 	long ran;
 	double got, max;
@@ -78,6 +90,8 @@ typedef struct {
 	stage *stages;
 	size_t nstages;
 	double got, max;
+	double hidden_got, hidden_max, hidden_elsewhere;
+	size_t nhidden;
 } report;
 
 /* ---- memory and errors -------------------------------------------------- */
@@ -306,10 +320,10 @@ static test *find_test(stage *s, const char *name)
 	return NULL;
 }
 
-static void add_test(stage *s, const char *name, double points, const char *vis)
+static void add_test(stage *s, const char *name, double points, const char *vis, int hidden)
 {
 	s->tests = xrealloc(s->tests, (s->ntests + 1) * sizeof *s->tests);
-	s->tests[s->ntests++] = (test){xstrdup(name), points, xstrdup(vis), R_MISSING, NULL};
+	s->tests[s->ntests++] = (test){xstrdup(name), points, xstrdup(vis), R_MISSING, NULL, hidden};
 }
 
 /* One rubric line: `test points visibility timeout_s`, '#' comments. */
@@ -327,7 +341,7 @@ static void rubric_line(stage *s, char *line, const char *path, int lineno)
 		die("%s:%d: a rubric line is `test points visibility timeout_s`", path, lineno);
 	if (find_test(s, name))
 		die("%s:%d: test '%s' is listed twice in stage %s", path, lineno, name, s->name);
-	add_test(s, name, points, vis);
+	add_test(s, name, points, vis, strstr(path, "/hidden/") != NULL);
 }
 
 static void read_rubric(stage *s, const char *path)
@@ -484,8 +498,10 @@ static void spec_build(stage *s, char *arg, const char *path, int lineno)
 		s->build = B_FAILED;
 	else if (word && strcmp(word, "rejected") == 0)
 		s->build = B_REJECTED;
+	else if (word && strcmp(word, "unreadable") == 0)
+		s->build = B_UNREADABLE;
 	else
-		die("%s:%d: build ok|failed|rejected [LOG]", path, lineno);
+		die("%s:%d: build ok|failed|rejected|unreadable [LOG]", path, lineno);
 	free(s->build_log);
 	s->build_log = log ? read_log(log) : NULL;
 }
@@ -523,6 +539,10 @@ static void spec_line(report *r, char *line, const char *path, int lineno)
 		s->budget = atof(arg);
 	else if (strcmp(line, "note") == 0)
 		strlist_add(&s->notes, arg);
+	else if (strcmp(line, "refused") == 0)
+		strlist_add(&s->refused, arg);
+	else if (strcmp(line, "hidden-elsewhere") == 0)
+		s->hidden_elsewhere = atof(arg);
 	else
 		die("%s:%d: unknown keyword '%s'", path, lineno, line);
 }
@@ -554,7 +574,10 @@ static char *why_missing(const stage *s)
 	if (s->build == B_FAILED)
 		return xprintf("did not compile (the compiler's errors are in %s/build)", s->name);
 	if (s->build == B_REJECTED)
-		return xprintf("the submission was rejected (the reason is in %s/build)", s->name);
+		return xprintf("refused by the grader (the reason is in %s/build)", s->name);
+	if (s->build == B_UNREADABLE)
+		return xprintf("the submission could not be read (the reason is in %s/build)",
+		               s->name);
 	if (s->exit_status == 124 || s->exit_status == 137)
 		return s->budget > 0 ? xprintf("timed out: the whole test program was stopped after "
 		                               "%g s, before it reported this test", s->budget)
@@ -588,12 +611,24 @@ static void score_stage(stage *s)
 	free(why);
 }
 
+static void count_hidden(report *r, const stage *s)
+{
+	for (size_t i = 0; i < s->ntests; i++)
+		if (s->tests[i].hidden) {
+			r->nhidden++;
+			r->hidden_max += s->tests[i].points;
+			r->hidden_got += s->tests[i].res == R_PASS ? s->tests[i].points : 0;
+		}
+	r->hidden_elsewhere += s->hidden_elsewhere;
+}
+
 static void score(report *r)
 {
 	for (size_t i = 0; i < r->nstages; i++) {
 		stage *s = &r->stages[i];
 		read_results(s);
 		score_stage(s);
+		count_hidden(r, s);
 		r->got += s->got;
 		r->max += s->max;
 	}
@@ -601,18 +636,53 @@ static void score(report *r)
 
 /* ---- the build pseudo-test ---------------------------------------------- */
 
-static const char *build_word(build_state b)
+/* The first line of TEXT (a copy). */
+static char *first_line(const char *text)
 {
-	static const char *const words[] = {"not built", "compiled", "did not compile",
-	                                    "rejected"};
-	return words[b];
+	size_t n = strcspn(text, "\n");
+	char *line = xrealloc(NULL, n + 1);
+	memcpy(line, text, n);
+	line[n] = '\0';
+	return line;
+}
+
+/* The stage's status in a few words: graded, did not compile, refused: why,
+ * unreadable (the gradebook's column, the build test's verdict). */
+static char *stage_status(const stage *s)
+{
+	switch (s->build) {
+	case B_OK:
+		if (s->refused.n == 0)
+			return xstrdup("graded");
+		return xprintf("refused: %s%s", s->refused.v[0], s->refused.n > 1 ? " (and more)" : "");
+	case B_FAILED:
+		return xstrdup("did not compile");
+	case B_REJECTED: {
+		char *line = first_line(s->build_log ? s->build_log : "");
+		char *status = xprintf("refused: %s", line);
+		free(line);
+		return status;
+	}
+	case B_UNREADABLE:
+		return xstrdup("unreadable");
+	default:
+		return xstrdup("not built");
+	}
+}
+
+/* The build pseudo-test passes when the stage was graded as handed in. */
+static int build_passed(const stage *s)
+{
+	return s->build == B_OK && s->refused.n == 0;
 }
 
 /* Its full text: the outcome, the grader's notes, the compiler output, and what
  * the runner printed outside the protocol (e.g. why it refused to run). */
 static void put_build_text(FILE *f, const stage *s)
 {
-	fprintf(f, "%s: %s\n", s->name, build_word(s->build));
+	char *status = stage_status(s);
+	fprintf(f, "%s: %s\n", s->name, status);
+	free(status);
 	for (size_t i = 0; i < s->notes.n; i++)
 		fprintf(f, "note: %s\n", s->notes.v[i]);
 	if (s->build_log && s->build != B_OK && s->build_log[0])
@@ -671,7 +741,11 @@ static void text_test(FILE *f, const stage *s, const test *t, int width)
 
 static void text_stage(FILE *f, const stage *s, int width)
 {
-	fprintf(f, "%-12s %-*s %8s  %s\n", s->name, width, "build", "-", build_word(s->build));
+	char *status = stage_status(s);
+	fprintf(f, "%-12s %-*s %8s  ", s->name, width, "build", "-");
+	put_plain(f, status, MSG_COLUMNS);
+	fputc('\n', f);
+	free(status);
 	for (size_t i = 0; i < s->ntests; i++)
 		text_test(f, s, &s->tests[i], width);
 	char pts[64];
@@ -684,13 +758,26 @@ static void text_details(FILE *f, const report *r)
 {
 	for (size_t i = 0; i < r->nstages; i++) {
 		const stage *s = &r->stages[i];
-		if (s->build == B_OK && s->notes.n == 0 && s->said.n == 0)
+		if (build_passed(s) && s->notes.n == 0 && s->said.n == 0)
 			continue;
 		char *text = build_text(s);
 		fputc('\n', f);
 		put_plain(f, text, 0);
 		free(text);
 	}
+}
+
+/* What the hidden tests weigh: in the instructor's grade, how many of the points
+ * they carry; in a student's, how many more the instructor's grade adds. */
+static void put_hidden(FILE *f, const report *r)
+{
+	if (r->nhidden)
+		fprintf(f, "\nHidden tests: %g of these %g points are in %zu tests the student "
+		        "handout does not have (%g of them earned here).\n", r->hidden_max, r->max,
+		        r->nhidden, r->hidden_got);
+	if (r->hidden_elsewhere > 0)
+		fprintf(f, "\nThese are the public tests. The instructor's grade adds hidden tests "
+		        "worth %g more points.\n", r->hidden_elsewhere);
 }
 
 static void write_text(FILE *f, const report *r)
@@ -702,6 +789,7 @@ static void write_text(FILE *f, const report *r)
 	for (size_t i = 0; i < r->nstages; i++)
 		text_stage(f, &r->stages[i], width);
 	text_details(f, r);
+	put_hidden(f, r);
 	fprintf(f, "\nScore: %g/%g\n", r->got, r->max);
 }
 
@@ -727,7 +815,7 @@ static void json_stage(FILE *f, const stage *s, int *first)
 	char *text = build_text(s);
 	fputs(*first ? "" : ",\n", f);
 	*first = 0;
-	json_entry(f, s->name, "build", 0, 0, s->build == B_OK, text, "visible");
+	json_entry(f, s->name, "build", 0, 0, build_passed(s), text, "visible");
 	free(text);
 	for (size_t i = 0; i < s->ntests; i++) {
 		const test *t = &s->tests[i];
@@ -747,9 +835,13 @@ static void write_json(FILE *f, const report *r)
 	FILE *m = open_memstream(&summary, &len);
 	if (!m)
 		die("out of memory");
-	for (size_t i = 0; i < r->nstages; i++)
+	for (size_t i = 0; i < r->nstages; i++) {
+		char *status = stage_status(&r->stages[i]);
 		fprintf(m, "%s: %g/%g (%s)\n", r->stages[i].name, r->stages[i].got,
-		        r->stages[i].max, build_word(r->stages[i].build));
+		        r->stages[i].max, status);
+		free(status);
+	}
+	put_hidden(m, r);
 	fprintf(m, "Score: %g/%g\n", r->got, r->max);
 	fclose(m);
 	fprintf(f, "{\n  \"score\": %g,\n  \"output\": ", r->got);
@@ -768,7 +860,7 @@ static void write_json(FILE *f, const report *r)
 static void count_bad(const stage *s, int *failures, int *errors)
 {
 	*failures = 0;
-	*errors = s->build == B_OK ? 0 : 1;
+	*errors = build_passed(s) ? 0 : 1;
 	for (size_t i = 0; i < s->ntests; i++) {
 		*failures += s->tests[i].res == R_FAIL;
 		*errors += s->tests[i].res != R_FAIL && s->tests[i].res != R_PASS;
@@ -803,9 +895,10 @@ static void junit_stage(FILE *f, const stage *s)
 	put_xml(f, s->name, 1);
 	fprintf(f, "\" tests=\"%zu\" failures=\"%d\" errors=\"%d\" skipped=\"0\">\n",
 	        s->ntests + 1, failures, errors);
-	char *text = build_text(s);
-	junit_case(f, s, "build", s->build == B_OK ? NULL : "error", build_word(s->build), text);
+	char *text = build_text(s), *status = stage_status(s);
+	junit_case(f, s, "build", build_passed(s) ? NULL : "error", status, text);
 	free(text);
+	free(status);
 	for (size_t i = 0; i < s->ntests; i++) {
 		const test *t = &s->tests[i];
 		char *body = xprintf("%s (0/%g points)\n%s", result_word(t->res), t->points,
@@ -854,9 +947,12 @@ static void tap_point(FILE *f, int n, const stage *s, const test *t)
 
 static void tap_build(FILE *f, int n, const stage *s)
 {
-	fprintf(f, "%s %d - %s/build (%s)\n", s->build == B_OK ? "ok" : "not ok", n, s->name,
-	        build_word(s->build));
-	if (s->build == B_OK)
+	char *status = stage_status(s);
+	fprintf(f, "%s %d - %s/build (", build_passed(s) ? "ok" : "not ok", n, s->name);
+	put_plain(f, status, 0);
+	fputs(")\n", f);
+	free(status);
+	if (build_passed(s))
 		return;
 	char *text = build_text(s);
 	fputs("  ---\n  message: ", f);
@@ -905,8 +1001,12 @@ static void gradebook_header(FILE *f, const report *r)
 {
 	fputs("student", f);
 	for (size_t i = 0; i < r->nstages; i++) {
+		char *status = xprintf("%s status", r->stages[i].name);
 		fputc(',', f);
 		put_csv(f, r->stages[i].name);
+		fputc(',', f);
+		put_csv(f, status);
+		free(status);
 	}
 	fputs(",total,max\n", f);
 }
@@ -931,8 +1031,12 @@ static void write_gradebook(const char *path, const char *student, const report 
 	else if (strcmp(have, want) != 0)
 		die("%s has other stages than this grade (%s): start a new gradebook", path, want);
 	put_csv(f, student);
-	for (size_t i = 0; i < r->nstages; i++)
-		fprintf(f, ",%g", r->stages[i].got);
+	for (size_t i = 0; i < r->nstages; i++) {
+		char *status = stage_status(&r->stages[i]);
+		fprintf(f, ",%g,", r->stages[i].got);
+		put_csv(f, status);
+		free(status);
+	}
 	fprintf(f, ",%g,%g\n", r->got, r->max);
 	if (fclose(f) != 0)
 		die("cannot write the gradebook %s: %s", path, strerror(errno));
@@ -963,6 +1067,7 @@ static void report_free(report *r)
 		free(s->build_log);
 		free(s->results_path);
 		strlist_free(&s->notes);
+		strlist_free(&s->refused);
 		strlist_free(&s->said);
 	}
 	free(r->stages);
