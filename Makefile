@@ -127,7 +127,7 @@ DRIVERS := $(foreach s,$(STAGES),$(patsubst lessons/$(s)/%.c,$(BUILD)/lessons/$(
 
 # ---- user targets --------------------------------------------------------
 .PHONY: all tests check check-run test grade grade-all lesson demo slides bench \
-        assignments handout mutants deps clean help need-stage
+        assignments handout submit mutants deps clean help need-stage
 all: $(LIB) $(LZ) $(DRIVERS)
 tests: $(TEST_BINS) $(REPORT) $(LZ)
 
@@ -183,10 +183,14 @@ mutants: all tests
 handout:
 	@bash lib/tools/handout.sh "$(BUILD)"
 
+# The student's submission: exactly the files the MANIFESTs name, listed.
+submit:
+	@bash lib/tools/submit.sh "$(BUILD)"
+
 clean:
 	rm -rf build
 
 help:
 	@echo "make deps | all | check | test STAGE=NN | grade [SUBMISSION=dir|x.tar.gz] [STAGE=NN] [ISOLATE=1]"
-	@echo "make grade-all SUBS=dir | lesson STAGE=NN [QUICK=1] | demo | slides | bench | assignments | handout | clean"
+	@echo "make grade-all SUBS=dir | submit | lesson STAGE=NN [QUICK=1] | demo | slides | bench | assignments | handout | mutants [STAGE=NN] | clean"
 	@echo "IMPL=solutions|assignments (now: $(CONFIG)); IMPL_NN=... for one stage; SANITIZE=1 for ASan+UBSan"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# handout.sh — `make handout`: the student tarball, and a check of it (DESIGN §4).
+# handout.sh — `make handout`: the student tarball, and a check of it along the student's path.
 #
 #   handout.sh BUILD
 #
@@ -7,10 +7,16 @@
 # BUILD/handout/lozenge-student.tar.gz under lozenge-student/, leaving out what only
 # the instructor has: solutions/, hidden tests (tests/*/hidden/), the grader's
 # fixtures and the mutants (both hold working code) and the scripts that need them
-# (audit.sh, fixtures.sh, mutants.sh). Without solutions/ the Makefile defaults to IMPL=assignments.
-# Then it checks the tarball: none of those paths inside, no solution marker in any
-# file, and unpacked into a temporary directory it builds (`make all`) and
-# `make grade` there scores 0.
+# (audit.sh, fixtures.sh, mutants.sh). Without solutions/ the Makefile defaults to
+# IMPL=assignments. It adds tests/grade/hidden-points (the points of each stage's
+# hidden tests), so that a student's `make grade` can say what it does not count.
+# Then it checks the tarball along the student's path: none of those paths inside,
+# no solution marker in any file; unpacked, it builds (`make all`); on the stubs
+# `make test STAGE=NN` fails with 0 points for every stage and `make grade` scores 0;
+# with the reference copied in (a student who finished), `make test STAGE=NN`
+# passes every stage, `make submit` packs exactly the MANIFEST files, the student's
+# `make grade` of that tarball gives every public point, and the instructor's
+# `make grade` of it (this tree, hidden tests included) gives full marks.
 # shellcheck source=lib/tools/common.sh
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$ROOT"
@@ -64,6 +70,11 @@ while IFS= read -r -d '' f; do
 	n=$((n + 1))
 done < <(git ls-files -z)
 [ "$n" -gt 0 ] || { echo "handout: git tracks no files here yet (git add them first)" >&2; exit 1; }
+for r in tests/[0-9][0-9]-*/hidden/rubric; do
+	[ -f "$r" ] || continue
+	awk -v s="$(basename "$(dirname "$(dirname "$r")")")" '{ sub(/#.*/, "") } NF >= 4 { p += $2 }
+		END { print s, p + 0 }' "$r"
+done >"$stage/tests/grade/hidden-points"
 
 mtime=$(git log -1 --format=%ct 2>/dev/null || echo 0)
 mkdir -p "$(dirname "$OUT")"
@@ -79,7 +90,7 @@ bad=0
 while IFS= read -r p; do
 	instructor_only "${p#"$NAME"/}" && { fail "$p is instructor-only"; bad=1; }
 done < <(tar -tzf "$OUT")
-[ "$bad" -eq 0 ] && echo "  ok  no solutions/, hidden tests, fixtures, audit.sh or fixtures.sh inside"
+[ "$bad" -eq 0 ] && echo "  ok  no solutions/, hidden tests, fixtures, mutants or their scripts inside"
 
 check=$tmp/check
 mkdir -p "$check"
@@ -109,6 +120,30 @@ else
 	fail "make all does not build in the handout:"
 	grep -v '^  \(CC\|LD\|AR\) ' "$tmp/all.log" | head -n 30
 fi
+stages=$(for d in "$tree"/assignments/[0-9][0-9]-*/; do basename "$d"; done)
+public_points() {  # public_points STAGE: the points of the rubrics the handout has
+	cat "$tree/tests/$1"/rubric* | awk '{ sub(/#.*/, "") } NF >= 4 { p += $2 } END { print p + 0 }'
+}
+test_stages() {  # test_stages stubs|done: make test STAGE=NN for every stage
+	local st out status want
+	for st in $stages; do
+		status=0
+		student_make test STAGE="${st%%-*}" >"$tmp/test.log" 2>&1 || status=$?
+		out=$(grep '^Score:' "$tmp/test.log" | tail -n 1)
+		if [ "$1" = stubs ]; then
+			want="Score: 0/$(public_points "$st")"
+			[ "$status" -ne 0 ] && [ "$out" = "$want" ] ||
+				fail "make test STAGE=${st%%-*} on the stubs: exit $status, '$out' (want a failure and '$want')"
+		else
+			want="Score: $(public_points "$st")/$(public_points "$st")"
+			[ "$status" -eq 0 ] && [ "$out" = "$want" ] ||
+				{ fail "make test STAGE=${st%%-*} with the reference: exit $status, '$out' (want 0 and '$want')"; grep -A1 FAIL "$tmp/test.log" | head -n 10; }
+		fi
+	done
+	echo "  ok  make test STAGE=NN on the $1 of every stage ($((SECONDS - t0)) s)"
+}
+t0=$SECONDS
+test_stages stubs
 t0=$SECONDS
 student_make grade >"$tmp/grade.log" 2>&1 || true
 score=$(score_of "$tmp/grade.log")
@@ -117,6 +152,49 @@ case $score in
 0/*) echo "  ok  make grade scores the stubs $score ($((SECONDS - t0)) s)" ;;
 *) fail "make grade in the handout scores the stubs $score, not 0" ;;
 esac
+if [ -s "$tree/tests/grade/hidden-points" ] && ! grep -q "adds hidden tests worth" "$tmp/grade.log"; then
+	fail "make grade in the handout does not say that the instructor's grade adds hidden tests"
+fi
+
+# A student who finished: the reference in assignments/, tested, submitted, graded.
+for st in $stages; do
+	cp solutions/"$st"/*.c "$tree/assignments/$st/"
+done
+t0=$SECONDS
+test_stages done
+if student_make submit >"$tmp/submit.log" 2>&1; then
+	sub=$tree/build/submit/lozenge-submission.tar.gz
+	want=$(cat "$tree"/tests/[0-9][0-9]-*/MANIFEST | sed 's/#.*//' | tr -d ' \t' | grep . | sort)
+	if [ "$(tar -tzf "$sub" | sort)" = "$want" ]; then
+		echo "  ok  make submit packs exactly the $(echo "$want" | wc -l) files the MANIFESTs name"
+	else
+		fail "make submit packed other files than the MANIFESTs name: $(tar -tzf "$sub" | tr '\n' ' ')"
+	fi
+	total=0
+	for st in $stages; do
+		total=$((total + $(public_points "$st")))
+	done
+	t0=$SECONDS
+	student_make grade SUBMISSION="$sub" >"$tmp/grade.log" 2>&1 || true
+	score=$(score_of "$tmp/grade.log")
+	if [ "$score" = "$total/$total" ]; then
+		echo "  ok  the student's make grade of it: $score, every public point ($((SECONDS - t0)) s)"
+	else
+		fail "the student's make grade of the submitted tarball: ${score:-no score}, want $total/$total"
+	fi
+	t0=$SECONDS
+	bash tests/grade/grade.sh --build "$BUILD" --submission "$sub" --out "$BUILD/handout/grade" \
+		>"$tmp/grade.log" 2>&1 || true
+	score=$(score_of "$tmp/grade.log")
+	if [ -n "$score" ] && [ "${score%/*}" = "${score#*/}" ]; then
+		echo "  ok  the instructor's make grade of it: $score, hidden tests included ($((SECONDS - t0)) s)"
+	else
+		fail "the instructor's make grade of the submitted tarball: ${score:-no score}, want full marks"
+	fi
+else
+	fail "make submit failed in the handout:"
+	tail -n 20 "$tmp/submit.log"
+fi
 
 if [ "$FAILED" -ne 0 ]; then
 	rm -f "$OUT"

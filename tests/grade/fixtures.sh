@@ -270,7 +270,7 @@ pack_fixture() {  # pack_fixture NAME SRC TARBALL
 		st=$(basename "$(dirname "$f")")
 		mkdir -p "$tmp/pack/$(dirname "$f")"
 		cp "$src/$f.dotdot" "$tmp/pack/$f"
-		tar -rf "$tmp/pack.tar" -C "$tmp/pack" \
+		tar -rPf "$tmp/pack.tar" -C "$tmp/pack" \
 			--transform "s|^assignments/$st/|assignments/$st/../$st/|" "$f"
 	done
 	gzip -c "$tmp/pack.tar" >"$3"
