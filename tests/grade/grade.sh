@@ -285,10 +285,11 @@ prepare_cache() {
 	for st in $ALL_STAGES; do
 		targets+=("build/grade/tests/$st")
 	done
-	scratch_make "$new/tree" -j"$JOBS" BUILD=build/grade IMPL=solutions "${targets[@]}" \
-		build/grade/bin/lz-report >"$new/build.log" 2>&1 &&
+	{ [ ! -d "$ROOT/solutions" ] ||
+		scratch_make "$new/tree" -j"$JOBS" BUILD=build/grade IMPL=solutions "${targets[@]}" \
+			>"$new/build.log" 2>&1; } &&
 		scratch_make "$new/tree" -j"$JOBS" BUILD=build/grade IMPL=assignments "${targets[@]}" \
-			>>"$new/build.log" 2>&1 ||
+			build/grade/bin/lz-report >>"$new/build.log" 2>&1 ||
 		{ sed -E '/^  (CC|LD|AR) /d' "$new/build.log" | head -n 30 >&2; rm -rf "$new"; die "this tree does not build"; }
 	echo "$key" >"$new/key"
 	rm -rf "$CACHE"
@@ -362,6 +363,7 @@ stage_vars() {  # stage_vars STAGE ALONE
 		return
 	fi
 	echo IMPL=assignments
+	[ -d "$ROOT/solutions" ] || return 0
 	for st in $BROKEN; do
 		echo "IMPL_${st%%-*}=solutions"
 	done
@@ -443,7 +445,9 @@ grade_submission() {  # grade_submission SUB LABEL SCRATCH PRIV UNREADABLE REFUS
 }
 
 # Compile every stage's files on its own; BROKEN lists the stages that did not
-# compile or whose objects were refused.
+# compile or whose objects were refused. In a tree without the reference (a
+# student's handout) a broken stage's files go back to the stubs, so that the other
+# stages can still link.
 compile_all() {  # compile_all SCRATCH PRIV
 	local scratch=$1 priv=$2 st problems
 	BROKEN=
@@ -452,13 +456,17 @@ compile_all() {  # compile_all SCRATCH PRIV
 		if ! compile_stage "$scratch" "$st" "$priv/build-$st.log"; then
 			echo failed >"$priv/state-$st"
 			BROKEN="$BROKEN $st"
-			continue
-		fi
-		problems=$(object_problems "$scratch" "$st")
-		if [ -n "$problems" ]; then
+		else
+			problems=$(object_problems "$scratch" "$st")
+			[ -z "$problems" ] && continue
 			echo "$problems" >"$priv/build-$st.log"
 			echo rejected >"$priv/state-$st"
 			BROKEN="$BROKEN $st"
+		fi
+		if [ ! -d "$ROOT/solutions" ]; then
+			cp -a "$CACHE/tree/assignments/$st/." "$scratch/assignments/$st/"
+			rm -f "$scratch/build/grade/obj/assignments/$st"-*.o
+			cp -a "$CACHE/tree/build/grade/obj/assignments/$st"-*.o "$scratch/build/grade/obj/assignments/"
 		fi
 	done
 }
@@ -515,7 +523,12 @@ stage_spec() {  # stage_spec STAGE PRIV
 		echo "note graded on its own (ISOLATE=1): the reference was linked for every other stage"
 	else
 		for b in $BROKEN; do
-			[[ $b < $st ]] && echo "note $b did not compile: its reference was linked so that this stage could be graded"
+			[[ $b < $st ]] || continue
+			if [ -d "$ROOT/solutions" ]; then
+				echo "note $b did not compile: its reference was linked so that this stage could be graded"
+			else
+				echo "note $b did not compile: its stubs were linked, so the tests here that use it fail"
+			fi
 		done
 	fi
 	echo "build ok"
