@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # make check — the test command: every suite against the reference must pass 100 %,
 # the committed assignments must be current, the stub audit and the grader
-# fixtures must pass. Usage: check.sh BUILD "STAGES"
+# fixtures must pass, and the handout must work along the student's path (make
+# test, make submit, make grade). Usage: check.sh BUILD "STAGES"
 set -uo pipefail
 build=$1
 stages=$2
@@ -60,6 +61,7 @@ done
 step "assignments/ is generated from solutions/" bash lib/tools/mkassign.sh solutions assignments --check
 step "stub audit" bash tests/grade/audit.sh "$build" "$stages"
 step "grader fixtures" bash tests/grade/fixtures.sh "$build"
+step "handout and the student's path" bash lib/tools/handout.sh "$build"
 
 echo
 if [ ${#failures[@]} -ne 0 ]; then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# audit.sh — the stub audit of `make check` (DESIGN §6).
+# audit.sh — the stub audit of `make check`.
 #
 #   audit.sh BUILD ["STAGES"]
 #
@@ -8,7 +8,8 @@
 # on a stub cannot fail, and is a defect), none may time out, the runner must finish
 # within the rubric's budget, the rubric and the suite must agree (the runner refuses
 # otherwise: its message is shown) and lz-report must grade the stage 0. Built with
-# IMPL=solutions, every test must pass and the grade must be 100%.
+# IMPL=solutions, every test must pass and the grade must be 100%. Both run under the
+# grader's file limit, so a test that floods Check's channel fails here first.
 # Prints `audit: N passed, M failed` (one count per test and per stage-wide check)
 # and exits non-zero on any failure.
 # shellcheck source=lib/tools/common.sh
@@ -20,6 +21,7 @@ AUDIT=$BUILD/audit
 STAGES=${2:-$(for d in assignments/[0-9][0-9]-*/; do [ -d "$d" ] && basename "$d"; done | tr "\n" " ")}
 REPORT=$AUDIT/bin/lz-report
 MULT=${CK_TIMEOUT_MULTIPLIER:-1}
+ULIMIT_F=$((20 * 1024))  # KiB: the grader's file limit, under which every run happens
 passed=0
 failed=0
 make_tmp
@@ -69,8 +71,11 @@ run() {  # run STAGE IMPL
 	local st=$1 impl=$2 budget status=0 ran want
 	budget=$(budget_of "$st")
 	mapfile -t args < <(rubric_args "$st")
-	CK_FORK=yes timeout -k 5 "$budget" "$AUDIT/tests/$st" "${args[@]}" --machine \
-		--log "$AUDIT/$st-$impl.log" >"$tmp/out" 2>"$tmp/err" </dev/null || status=$?
+	(
+		ulimit -f "$ULIMIT_F"
+		exec env CK_FORK=yes timeout -k 5 "$budget" "$AUDIT/tests/$st" "${args[@]}" --machine \
+			--log "$AUDIT/$st-$impl.log"
+	) >"$tmp/out" 2>"$tmp/err" </dev/null || status=$?
 	if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
 		defect "$st ($impl): the test program did not finish within $budget s"
 		return 1
