@@ -16,7 +16,7 @@
 #define CELLS_NMAX ((size_t)INT32_MAX)
 
 /* The most cells per side that keeps m^dim <= LZ_CELLS_MAX: 2048 in 2D, 161 in 3D. */
-static int32_t cells_side_max(int dim) { return dim == 2 ? 4096 : 256; }
+static int32_t cells_side_max(int dim) { return dim == 2 ? 2048 : 161; }
 
 static size_t ipow(size_t b, int e)
 {
@@ -42,8 +42,8 @@ static int cells_check_common(lz_cells_order order, size_t nmax, size_t cap)
 }
 
 /* Fill rank[] and unrank[]: the cells sorted by Morton code. The codes of an m^dim
- * grid lie below M^dim, M the power of two >= m (at most LZ_CELLS_MAX codes, since
- * m <= 4096 in 2D and 256 in 3D): one bit per code marks the codes in use, and a
+ * grid lie below M^dim, M the power of two >= m (at most 2^22 codes in 2D, m <= 2048,
+ * and 2^24 in 3D, m <= 161 < 256): one bit per code marks the codes in use, and a
  * cell's rank is the number of marked codes below its own — a counting sort, O(M^dim)
  * without a comparison. Each code is checked, as lz_morton is graded. */
 static int cells_rank(lz_cells *c)

@@ -5,9 +5,10 @@
  * The references use their own arithmetic: Morton codes bit by bit, cells from
  * points built inside a known cell, blocks by brute force over all cells, pairs by
  * all O(N²) pairs or by a sort-and-sweep. The grids of the unit tests are made by
- * hand (their Morton ranks from the bit-by-bit codes), so no graded function runs
- * while they are built and each graded function is tested on its own; the pair
- * tests allocate their grids with lz_cells_alloc, as a user does. */
+ * hand (their Morton ranks from the bit-by-bit codes), and the pair tests also bin
+ * and link their points by hand, so no other graded function runs while a test is set
+ * up and each test pays for one function. The last test runs the whole chain as a
+ * user does (lz_cells_alloc, binning, linking, pairs) and checks every step of it. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -186,11 +187,43 @@ LZ_TEST(morton_small_cases_by_hand)
 	              "code bits 3, 4, 5 (got %llu, %llu, %llu for (2,0,0), (0,2,0), (0,0,2); "
 	              "expected 8, 16, 32)", (unsigned long long)lz_morton(3, 2, 0, 0),
 	              (unsigned long long)lz_morton(3, 0, 2, 0), (unsigned long long)lz_morton(3, 0, 0, 2));
+	/* The first bits past what the 32-bit recipes keep: x = 2^10 in 3D goes to bit 30,
+	 * y = 2^16 in 2D to bit 33. */
+	CHECK(lz_morton(3, 1024, 0, 0) == UINT64_C(1) << 30 &&
+	              lz_morton(2, 0, 65536, 0) == UINT64_C(1) << 33, "lz_morton(3, 1024, 0, 0) = "
+	              "%#llx and lz_morton(2, 0, 65536, 0) = %#llx, expected bit 30 and bit 33 alone: "
+	              "a 32-bit bit spread keeps only 10 bits per coordinate in 3D, 16 in 2D",
+	              (unsigned long long)lz_morton(3, 1024, 0, 0),
+	              (unsigned long long)lz_morton(2, 0, 65536, 0));
 	uint64_t got = lz_morton(2, 1, 1, 12345);
 	CHECK(got == 3, "lz_morton(2, 1, 1, 12345) = %llu, expected 3: in 2D the z "
 	              "argument must be ignored", (unsigned long long)got);
 }
 END_TEST
+
+/* Inside an aligned block of side 2^j, its 2^dim sub-blocks of side 2^(j-1) must come
+ * in the order x first, then y, then z: the sub-block holding cx starts at the block's
+ * code plus (bit j-1 of x + 2·bit j-1 of y + 4·bit j-1 of z) runs of 2^((j-1)·dim).
+ * Consecutive runs alone allow any order of the sub-blocks (x and y swapped, say). */
+static void check_sub_block_order(int dim, uint32_t m, int j, const int32_t *cx,
+                                  const uint64_t *code)
+{
+	int32_t big[3], sub[3];
+	for (int a = 0; a < 3; a++) {
+		big[a] = cx[a] >> j << j;
+		sub[a] = cx[a] >> (j - 1) << (j - 1);
+	}
+	size_t qb = (size_t)big[0] + m * ((size_t)big[1] + m * (size_t)big[2]);
+	size_t qs = (size_t)sub[0] + m * ((size_t)sub[1] + m * (size_t)sub[2]);
+	int place = (cx[0] >> (j - 1) & 1) + 2 * (cx[1] >> (j - 1) & 1) + 4 * (cx[2] >> (j - 1) & 1);
+	uint64_t part = (uint64_t)1 << ((j - 1) * dim), want = code[qb] + (uint64_t)place * part;
+	CHECK(code[qs] == want, "%dD: the block of side %d at (%d, %d, %d) starts at code %llu, "
+	      "so its sub-block of side %d at (%d, %d, %d), number %d in the order x, then y%s, "
+	      "should start at code %llu; it starts at %llu. Bit b of x goes to the lowest place "
+	      "of each group (bit dim·b), then y, then z", dim, 1 << j, big[0], big[1], big[2],
+	      (unsigned long long)code[qb], 1 << (j - 1), sub[0], sub[1], sub[2], place,
+	      dim == 3 ? ", then z" : "", (unsigned long long)want, (unsigned long long)code[qs]);
+}
 
 LZ_TEST(morton_is_a_bijection_with_consecutive_blocks)
 {
@@ -230,6 +263,7 @@ LZ_TEST(morton_is_a_bijection_with_consecutive_blocks)
 					              (unsigned long long)code[q], 1 << j, corner[0], corner[1],
 					              corner[2], (unsigned long long)base, (unsigned long long)run,
 					              (unsigned long long)run);
+					check_sub_block_order(dim, m, j, cx, code);
 				}
 			}
 			free(code);
@@ -591,6 +625,14 @@ LZ_TEST(block_is_the_touching_cells_with_wrap)
 				              "the block of cell %s has %d cells; with the wrap every cell has "
 				              "%d (itself and all its neighbours, also across the box edge)", dim,
 				              m, order_name(c->order), fmt_cell(b1, 64, dim, cs), n, c->nfull);
+				/* The half block is half of it: the cell and one of each pair of
+				 * opposite neighbours. */
+				int nh = get_block(c, s, 1, out);
+				CHECK(nh == c->nhalf, "%dD periodic grid of %d cells per side, %s order: the "
+				              "half block of cell %s has %d cells; it is the cell and one of each "
+				              "of the %d pairs of opposite neighbours, %d in all", dim, m,
+				              order_name(c->order), fmt_cell(b1, 64, dim, cs), nh,
+				              (c->nfull - 1) / 2, c->nhalf);
 			}
 			/* n distinct touching cells, and there are exactly nfull of those. */
 			lz_cells_free(c);
@@ -623,6 +665,15 @@ LZ_TEST(block_with_walls_stops_at_the_walls)
 				              "8, 12 or 18 in 3D)", dim, m, order_name(c->order),
 				              fmt_cell(b1, 64, dim, cs), n, want, want < c->nfull ?
 				              "the edge" : "the inside");
+				/* Its half block holds cells of the block only (get_block), and away
+				 * from the walls it is the cell and one of each opposite pair. */
+				int nh = get_block(c, s, 1, out);
+				CHECK(want < c->nfull || nh == c->nhalf, "%dD box with walls, %d cells per "
+				              "side, %s order: the half block of the inner cell %s has %d cells; "
+				              "away from the walls it is the cell and one of each of the %d "
+				              "pairs of opposite neighbours, %d in all", dim, m,
+				              order_name(c->order), fmt_cell(b1, 64, dim, cs), nh,
+				              (c->nfull - 1) / 2, c->nhalf);
 			}
 			lz_cells_free(c);
 		}
@@ -1002,21 +1053,142 @@ static const char *describe(char *buf, size_t size, const lz_cells *c, const dou
 	return buf;
 }
 
-/* Bin and link x in grid c, scan for pairs closer than rc, and fail unless they are
- * exactly the sorted keys want[0 .. nwant). */
-static void check_pairs(lz_cells *c, const double *x, size_t n, double rc, const uint64_t *want,
-                        size_t nwant, const char *what)
+/* ---- pair scans on grids, bins and lists made here ---- */
+
+/* The pair tests below give lz_cells_pairs a grid whose block tables, bins and linked
+ * lists the test made itself, so that they pay for the pair scan alone; the last test
+ * of the file runs the whole chain as a user does. */
+
+/* 1 if the offset (a, b, d) is in the header's forward half. */
+static int bf_forward(int a, int b, int d)
 {
-	CHECK(lz_cells_bin_points(c, n, x) == LZ_OK, "%s: lz_cells_bin_points: %s", what,
-	              lz_error_message());
-	lz_cells_link(c);
+	return d > 0 || (d == 0 && (b > 0 || (b == 0 && a > 0)));
+}
+
+/* The storage index of the cell at offset off from the cell coordinates cs, wrapped in
+ * a periodic box; ncells (the empty cell) when it lies beyond a wall. */
+static uint32_t bf_neighbour(const lz_cells *c, const int32_t *cs, const int *off)
+{
+	int32_t nb[3] = {0, 0, 0}, m = c->m;
+	for (int k = 0; k < c->dim; k++) {
+		nb[k] = cs[k] + off[k];
+		if (nb[k] < 0 || nb[k] >= m) {
+			if (!c->periodic)
+				return (uint32_t)c->ncells;
+			nb[k] = (nb[k] + m) % m;
+		}
+	}
+	size_t q = (size_t)nb[0] + (size_t)m * ((size_t)nb[1] + (size_t)m * (size_t)nb[2]);
+	return c->rank ? c->rank[q] : (uint32_t)q;
+}
+
+/* Shuffle a[0 .. n) (Fisher-Yates). */
+static void shuffle_u32(gsl_rng *g, uint32_t *a, size_t n)
+{
+	for (size_t k = n; k > 1; k--) {
+		size_t j = gsl_rng_uniform_int(g, k);
+		uint32_t t = a[k - 1];
+		a[k - 1] = a[j];
+		a[j] = t;
+	}
+}
+
+/* The block tables of a hand-made grid: row s of full[] holds s and its touching
+ * cells, row s of half[] s and the forward ones, the empty cell ncells for every
+ * neighbour beyond a wall. With g, the entries after the first are shuffled (the empty
+ * ones too): the header fixes only that the cell itself comes first. */
+static void hand_tables(lz_cells *c, gsl_rng *g)
+{
+	size_t nc = c->ncells, nf = (size_t)c->nfull, nh = (size_t)c->nhalf;
+	c->full = malloc((nc + 1) * nf * sizeof *c->full);
+	c->half = malloc((nc + 1) * nh * sizeof *c->half);
+	ck_assert(c->full && c->half);
+	int dz = c->dim == 3;
+	for (size_t s = 0; s <= nc; s++) {
+		uint32_t *f = c->full + s * nf, *h = c->half + s * nh;
+		size_t kf = 1, kh = 1;
+		f[0] = h[0] = (uint32_t)s;
+		int32_t cs[3] = {0, 0, 0};
+		if (s < nc)
+			bf_coords(c, s, cs);
+		for (int d = -dz; d <= dz && s < nc; d++)
+			for (int b = -1; b <= 1; b++)
+				for (int a = -1; a <= 1; a++) {
+					if (a == 0 && b == 0 && d == 0)
+						continue;
+					uint32_t t = bf_neighbour(c, cs, (int[]){a, b, d});
+					f[kf++] = t;
+					if (bf_forward(a, b, d))
+						h[kh++] = t;
+				}
+		while (kf < nf)
+			f[kf++] = (uint32_t)nc;
+		while (kh < nh)
+			h[kh++] = (uint32_t)nc;
+		if (g) {
+			shuffle_u32(g, f + 1, nf - 1);
+			shuffle_u32(g, h + 1, nh - 1);
+		}
+	}
+}
+
+/* A hand-made grid for points, with shuffled block tables (see hand_tables). */
+static lz_cells *pair_grid(gsl_rng *g, int dim, int32_t m, double L, int periodic,
+                           lz_cells_order order, size_t nmax)
+{
+	lz_cells *c = hand_grid(dim, m, L, periodic, order, nmax, 0);
+	hand_tables(c, g);
+	return c;
+}
+
+/* The cells per side that lz_cells_alloc chooses for a cutoff rc: the most that keep
+ * the cell side L / m >= rc. */
+static int32_t cells_for(double L, double rc)
+{
+	int32_t m = (int32_t)floor(L / rc);
+	while (m > 1 && L / m < rc)
+		m--;
+	return m < 1 ? 1 : m;
+}
+
+/* Bin the points xbin[0 .. n·dim) (inside the box, or on a wall) by floor(x / w), and
+ * link them, every particle pushed at its cell's head: the lists run in decreasing
+ * index, the opposite of what lz_cells_link makes. */
+static void hand_bin_link(lz_cells *c, const double *xbin, size_t n)
+{
+	int dim = c->dim;
+	int32_t m = c->m;
+	c->n = n;
+	for (size_t q = 0; q <= c->ncells; q++)
+		c->head[q] = -1;
+	for (size_t i = 0; i < n; i++) {
+		size_t q = 0, stride = 1;
+		for (int k = 0; k < dim; k++, stride *= (size_t)m) {
+			double u = floor(xbin[i * (size_t)dim + (size_t)k] / c->width);
+			int32_t cx = u < 0 ? 0 : u >= m ? m - 1 : (int32_t)u;
+			q += stride * (size_t)cx;
+		}
+		c->of[i] = c->rank ? c->rank[q] : (uint32_t)q;
+		c->next[i] = c->head[c->of[i]];
+		c->head[c->of[i]] = (int32_t)i;
+	}
+}
+
+/* Scan grid c (binned and linked on these points) for pairs closer than rc, and fail
+ * unless they are exactly the sorted keys want[0 .. nwant); then count again with no
+ * room at all (out = NULL, cap = 0): the count must not change. */
+static void check_pairs(const lz_cells *c, const double *x, size_t n, double rc,
+                        const uint64_t *want, size_t nwant, const char *what)
+{
 	size_t cap = nwant + 16;
 	lz_pair *out = malloc(cap * sizeof *out);
 	size_t got = lz_cells_pairs(c, x, rc, out, cap), stored = got < cap ? got : cap;
 	uint64_t *keys = malloc((stored + 1) * sizeof *keys);
 	for (size_t k = 0; k < stored; k++) {
 		CHECK(out[k].i < out[k].j && out[k].j < n, "%s: pair number %zu is (%u, %u); "
-		              "pairs must be (i, j) with i < j < N = %zu", what, k, out[k].i, out[k].j, n);
+		              "pairs must be (i, j) with i < j < N = %zu%s", what, k, out[k].i, out[k].j,
+		              n, out[k].i == out[k].j ? " (a particle met itself: is its own cell "
+		              "scanned twice, once as its list and once in the half block?)" : "");
 		keys[k] = pair_key(out[k].i, out[k].j);
 	}
 	qsort(keys, stored, sizeof *keys, key_cmp);
@@ -1041,15 +1213,47 @@ static void check_pairs(lz_cells *c, const double *x, size_t n, double rc, const
 	}
 	CHECK(got == nwant, "%s: lz_cells_pairs returned %zu, but there are %zu pairs "
 	              "(the return value is the number of pairs)", what, got, nwant);
+	size_t counted = lz_cells_pairs(c, x, rc, NULL, 0);
+	CHECK(counted == nwant, "%s: with no room for pairs (out = NULL, cap = 0) "
+	              "lz_cells_pairs returned %zu, but there are %zu: like snprintf it must count "
+	              "every pair, stored or not", what, counted, nwant);
 	free(out);
 	free(keys);
 }
 
-/* Grid, points and reference for one random configuration. */
+/* Bin and link xbin by hand, then check the scan of the points x (the same points, or
+ * the same shifted by whole periods). */
+static void pairs_case(lz_cells *c, const double *xbin, const double *x, size_t n, double rc,
+                       const uint64_t *want, size_t nwant, const char *what)
+{
+	hand_bin_link(c, xbin, n);
+	check_pairs(c, x, n, rc, want, nwant, what);
+}
+
+/* Make the last 8 of n points four pairs along x at the boundary of rc: exactly rc
+ * apart (not a pair: distance² < rc² is strict) and a hair closer (a pair), in the
+ * open and through the boundary x = 0 = L — the latter only when the difference
+ * L - (L - rc) comes out as rc exactly. Each pair at its own height (y, z). */
+static void exact_pairs(double *x, size_t n, int dim, double L, double rc)
+{
+	double near = nextafter(rc, 0), across = L - rc;
+	ck_assert(n >= 8 && near * near < rc * rc);
+	double gap[4] = {rc, near, L - across == rc ? across : 0.5 * L, nextafter(across, L)};
+	for (int p = 0; p < 4; p++) {
+		double *a = x + (n - 8 + 2 * (size_t)p) * (size_t)dim, *b = a + dim;
+		for (int k = 1; k < dim; k++)
+			a[k] = b[k] = (0.125 + 0.25 * p) * L;
+		a[0] = 0;
+		b[0] = gap[p];
+	}
+}
+
+/* Grid, points and reference for one random configuration; exact: add pairs at
+ * exactly rc and a hair closer (exact_pairs). */
 static void random_pairs_case(gsl_rng *rng, int dim, double L, double rc_grid, double rc,
                               int periodic, lz_cells_order order, size_t n, int shifted)
 {
-	double *x = malloc(n * (size_t)dim * sizeof *x);
+	double *x = malloc(n * (size_t)dim * sizeof *x), *xbin = malloc(n * (size_t)dim * sizeof *x);
 	for (size_t k = 0; k < n * (size_t)dim; k++)
 		x[k] = gsl_rng_uniform(rng) * L;
 	if (!periodic && n > 4) {
@@ -1057,24 +1261,27 @@ static void random_pairs_case(gsl_rng *rng, int dim, double L, double rc_grid, d
 		x[(size_t)dim] = L;
 		x[2 * (size_t)dim + 1] = L;
 	}
+	if (!shifted && n >= 40)
+		exact_pairs(x, n, dim, L, rc);
 	size_t nwant;
 	uint64_t *want = bf_pairs(x, n, dim, L, periodic, rc, &nwant);
+	memcpy(xbin, x, n * (size_t)dim * sizeof *x);
 	if (shifted)  /* the same points, given several periods away: the same pairs */
 		for (size_t k = 0; k < n * (size_t)dim; k++)
 			x[k] += L * (double)((long)gsl_rng_uniform_int(rng, 7) - 3);
-	lz_cells *c = lz_cells_alloc(dim, L, rc_grid, periodic, order, n, 0);
-	CHECK(c != NULL, "lz_cells_alloc(%d, L = %g, rc = %g): %s", dim, L, rc_grid,
-	              lz_error_message());
-	char what[256];
+	lz_cells *c = pair_grid(rng, dim, cells_for(L, rc_grid), L, periodic, order, n);
+	char what[320];
 	snprintf(what, sizeof what, "%dD %s box L = %g, %zu random points (%.2g per cell), grid of "
 	         "%d^%d cells for rc = %g, %s order, pairs closer than rc = %g%s", dim,
 	         periodic ? "periodic" : "walled", L, n, (double)n / (double)c->ncells, c->m, dim,
 	         rc_grid, order_name(order), rc, shifted ? ", coordinates given outside the box "
-	         "(shifted by whole periods)" : "");
-	check_pairs(c, x, n, rc, want, nwant, what);
+	         "(shifted by whole periods)" : n >= 40 ? ", among them pairs at exactly rc and a "
+	         "hair closer, also through the boundary" : "");
+	pairs_case(c, xbin, x, n, rc, want, nwant, what);
 	lz_cells_free(c);
 	free(want);
 	free(x);
+	free(xbin);
 }
 
 LZ_TEST(pairs_match_brute_force_2d)
@@ -1112,57 +1319,57 @@ END_TEST
 
 /* Two points in a box of side 3 with cells of side exactly rc = 1 (m = 3): the
  * number of pairs must be `want` (0 or 1). */
-static void two_points(int dim, int periodic, const double *p, const double *q, size_t want,
-                       const char *why)
+static void two_points(gsl_rng *g, int dim, int periodic, const double *p, const double *q,
+                       size_t want, const char *why)
 {
 	double x[6];
 	memcpy(x, p, (size_t)dim * sizeof *x);
 	memcpy(x + dim, q, (size_t)dim * sizeof *x);
-	lz_cells *c = lz_cells_alloc(dim, 3.0, 1.0, periodic, LZ_CELLS_ROW, 2, 0);
-	CHECK(c != NULL && c->m == 3, "lz_cells_alloc(%d, L = 3, rc = 1): %s", dim,
-	              lz_error_message());
+	lz_cells *c = pair_grid(g, dim, 3, 3.0, periodic, LZ_CELLS_ROW, 2);
 	uint64_t key = pair_key(0, 1);
 	char what[320];
 	snprintf(what, sizeof what, "%dD %s box L = 3 cut in 3 cells of side exactly rc = 1, two "
 	         "points (%.17g, %.17g%s) and (%.17g, %.17g%s): %s", dim, periodic ? "periodic" :
 	         "walled", p[0], p[1], dim == 3 ? ", ..." : "", q[0], q[1], dim == 3 ? ", ..." : "",
 	         why);
-	check_pairs(c, x, 2, 1.0, &key, want, what);
+	pairs_case(c, x, x, 2, 1.0, &key, want, what);
 	lz_cells_free(c);
 }
 
 LZ_TEST(pairs_at_exactly_the_cutoff_and_across_the_boundary)
 {
 	double below15 = nextafter(1.5, 0), above225 = nextafter(2.25, 3);
-	two_points(2, 1, (double[]){0.5, 0.5}, (double[]){1.5, 0.5}, 0,
+	gsl_rng *rng = rng_new(409);
+	two_points(rng, 2, 1, (double[]){0.5, 0.5}, (double[]){1.5, 0.5}, 0,
 	           "distance exactly rc is not a pair (distance² < rc², strictly)");
-	two_points(2, 1, (double[]){0.5, 0.5}, (double[]){below15, 0.5}, 1,
+	two_points(rng, 2, 1, (double[]){0.5, 0.5}, (double[]){below15, 0.5}, 1,
 	           "a hair closer than rc, in neighbouring cells, is a pair");
-	two_points(2, 1, (double[]){0.25, 1.5}, (double[]){2.25, 1.5}, 0,
+	two_points(rng, 2, 1, (double[]){0.25, 1.5}, (double[]){2.25, 1.5}, 0,
 	           "distance exactly rc through the periodic boundary is not a pair");
-	two_points(2, 1, (double[]){0.25, 1.5}, (double[]){above225, 1.5}, 1,
+	two_points(rng, 2, 1, (double[]){0.25, 1.5}, (double[]){above225, 1.5}, 1,
 	           "a hair closer than rc through the periodic boundary is a pair");
-	two_points(2, 1, (double[]){0.1, 0.1}, (double[]){2.9, 2.9}, 1,
+	two_points(rng, 2, 1, (double[]){0.1, 0.1}, (double[]){2.9, 2.9}, 1,
 	           "opposite corners of the box are 0.28 apart through the corner: a pair");
-	two_points(2, 1, (double[]){0.0, 1.0}, (double[]){2.0, 1.0}, 0,
+	two_points(rng, 2, 1, (double[]){0.0, 1.0}, (double[]){2.0, 1.0}, 0,
 	           "x = 0 and x = 2, both on cell edges, are exactly rc apart through the "
 	           "boundary: not a pair");
-	two_points(2, 1, (double[]){0.0, 0.0}, (double[]){nextafter(2.0, 3), 0.0}, 1,
+	two_points(rng, 2, 1, (double[]){0.0, 0.0}, (double[]){nextafter(2.0, 3), 0.0}, 1,
 	           "x = 0 and x = 2 + ulp are 1 - ulp apart through the boundary: a pair");
-	two_points(2, 0, (double[]){0.1, 0.1}, (double[]){2.9, 2.9}, 0,
+	two_points(rng, 2, 0, (double[]){0.1, 0.1}, (double[]){2.9, 2.9}, 0,
 	           "with walls there is no wrap: opposite corners are far apart");
-	two_points(2, 0, (double[]){0.5, 2.5}, (double[]){below15, 2.5}, 1,
+	two_points(rng, 2, 0, (double[]){0.5, 2.5}, (double[]){below15, 2.5}, 1,
 	           "a hair closer than rc with walls is a pair");
-	two_points(3, 1, (double[]){0.5, 0.5, 0.5}, (double[]){0.5, 0.5, below15}, 1,
+	two_points(rng, 2, 0, (double[]){0.5, 2.5}, (double[]){1.5, 2.5}, 0,
+	           "distance exactly rc with walls is not a pair");
+	two_points(rng, 3, 1, (double[]){0.5, 0.5, 0.5}, (double[]){0.5, 0.5, below15}, 1,
 	           "a hair closer than rc along z is a pair");
-	two_points(3, 1, (double[]){0.5, 0.5, 0.5}, (double[]){0.5, 1.5, 0.5}, 0,
+	two_points(rng, 3, 1, (double[]){0.5, 0.5, 0.5}, (double[]){0.5, 1.5, 0.5}, 0,
 	           "distance exactly rc is not a pair");
-	two_points(3, 1, (double[]){0.1, 0.1, 0.1}, (double[]){2.9, 2.9, 2.9}, 1,
+	two_points(rng, 3, 1, (double[]){0.1, 0.1, 0.1}, (double[]){2.9, 2.9, 2.9}, 1,
 	           "opposite corners of the box are 0.35 apart through the corner: a pair");
-	two_points(3, 1, (double[]){0.1, 2.9, 1.5}, (double[]){2.9, 0.1, 1.5}, 1,
+	two_points(rng, 3, 1, (double[]){0.1, 2.9, 1.5}, (double[]){2.9, 0.1, 1.5}, 1,
 	           "x and y both wrap: 0.28 apart, a pair");
 	/* Random points in the smallest periodic grids, m = 3 and w = rc. */
-	gsl_rng *rng = rng_new(409);
 	random_pairs_case(rng, 2, 3.0, 1.0, 1.0, 1, LZ_CELLS_ROW, 80, 0);
 	random_pairs_case(rng, 2, 3.0, 1.0, 1.0, 1, LZ_CELLS_MORTON, 80, 0);
 	random_pairs_case(rng, 3, 3.0, 1.0, 1.0, 1, LZ_CELLS_MORTON, 150, 0);
@@ -1173,18 +1380,22 @@ END_TEST
 
 LZ_TEST(pairs_of_one_two_and_crowded_cells)
 {
-	double one[2] = {4.2, 7.7};
-	lz_cells *c = lz_cells_alloc(2, 10.0, 1.0, 1, LZ_CELLS_MORTON, 400, 0);
-	CHECK(c != NULL, "%s", lz_error_message());
-	check_pairs(c, one, 1, 1.0, NULL, 0, "a single point (N = 1): no pair");
-	uint64_t key = pair_key(0, 1);
-	check_pairs(c, (double[]){0.1, 5.0, 9.8, 5.2}, 2, 1.0, &key, 1,
-	            "N = 2, 0.36 apart across the periodic boundary at x = 0 = L");
-	check_pairs(c, (double[]){5.0, 9.95, 5.3, 0.05}, 2, 1.0, &key, 1,
-	            "N = 2, 0.32 apart across the periodic boundary at y = 0 = L");
-	check_pairs(c, (double[]){1.0, 1.0, 6.0, 6.0}, 2, 1.0, &key, 0, "N = 2, far apart: no pair");
-	/* 300 points in one cell, the cell (4, 7): many pairs, all in one list. */
 	gsl_rng *rng = rng_new(410);
+	double one[2] = {4.2, 7.7};
+	lz_cells *c = pair_grid(rng, 2, 10, 10.0, 1, LZ_CELLS_MORTON, 400);
+	pairs_case(c, one, one, 1, 1.0, NULL, 0, "a single point (N = 1): no pair");
+	uint64_t key = pair_key(0, 1);
+	double across_x[4] = {0.1, 5.0, 9.8, 5.2}, across_y[4] = {5.0, 9.95, 5.3, 0.05};
+	double far[4] = {1.0, 1.0, 6.0, 6.0};
+	pairs_case(c, across_x, across_x, 2, 1.0, &key, 1,
+	           "N = 2, 0.36 apart across the periodic boundary at x = 0 = L");
+	pairs_case(c, across_y, across_y, 2, 1.0, &key, 1,
+	           "N = 2, 0.32 apart across the periodic boundary at y = 0 = L");
+	pairs_case(c, far, far, 2, 1.0, &key, 0, "N = 2, far apart: no pair");
+	double exact[4] = {0.25, 5.0, 9.25, 5.0};
+	pairs_case(c, exact, exact, 2, 1.0, &key, 0, "N = 2, exactly rc apart across the periodic "
+	           "boundary at x = 0 = L: no pair (distance² < rc², strictly)");
+	/* 300 points in one cell, the cell (4, 7): many pairs, all in one list. */
 	size_t n = 300, nwant;
 	double *x = malloc(2 * n * sizeof *x);
 	for (size_t i = 0; i < n; i++) {
@@ -1192,7 +1403,7 @@ LZ_TEST(pairs_of_one_two_and_crowded_cells)
 		x[2 * i + 1] = 7 + gsl_rng_uniform(rng);
 	}
 	uint64_t *want = bf_pairs(x, n, 2, 10.0, 1, 1.0, &nwant);
-	check_pairs(c, x, n, 1.0, want, nwant, "300 points all in one cell");
+	pairs_case(c, x, x, n, 1.0, want, nwant, "300 points all in one cell");
 	free(want);
 	/* 40 points within 0.05 of each other: all 780 pairs. */
 	for (size_t i = 0; i < 40; i++) {
@@ -1201,8 +1412,8 @@ LZ_TEST(pairs_of_one_two_and_crowded_cells)
 	}
 	want = bf_pairs(x, 40, 2, 10.0, 1, 1.0, &nwant);
 	ck_assert(nwant == 780);
-	check_pairs(c, x, 40, 1.0, want, nwant, "40 points in a tight cluster on the boundary "
-	            "x = L (every pair closer than rc)");
+	pairs_case(c, x, x, 40, 1.0, want, nwant, "40 points in a tight cluster on the boundary "
+	           "x = L (every pair closer than rc)");
 	free(want);
 	free(x);
 	lz_cells_free(c);
@@ -1217,12 +1428,11 @@ LZ_TEST(pairs_count_all_even_when_out_is_too_small)
 	double *x = malloc(2 * n * sizeof *x);
 	for (size_t k = 0; k < 2 * n; k++)
 		x[k] = 10 * gsl_rng_uniform(rng);
+	exact_pairs(x, n, 2, 10.0, 1.0);
 	uint64_t *want = bf_pairs(x, n, 2, 10.0, 1, 1.0, &nwant);
 	ck_assert(nwant > 100);
-	lz_cells *c = lz_cells_alloc(2, 10.0, 1.0, 1, LZ_CELLS_ROW, n, 0);
-	CHECK(c != NULL, "%s", lz_error_message());
-	ck_assert(lz_cells_bin_points(c, n, x) == LZ_OK);
-	lz_cells_link(c);
+	lz_cells *c = pair_grid(rng, 2, 10, 10.0, 1, LZ_CELLS_ROW, n);
+	hand_bin_link(c, x, n);
 	size_t cap = nwant / 3;
 	lz_pair *out = malloc(nwant * sizeof *out);
 	for (size_t k = 0; k < nwant; k++)
@@ -1364,15 +1574,183 @@ LZ_TEST(pairs_of_a_million_points)
 	double *x = malloc(2 * n * sizeof *x);
 	for (size_t k = 0; k < 2 * n; k++)
 		x[k] = L * gsl_rng_uniform(rng);
+	exact_pairs(x, n, 2, L, rc);
 	uint64_t *want = sweep_pairs(x, n, L, rc, &nwant);
-	lz_cells *c = lz_cells_alloc(2, L, rc, 1, LZ_CELLS_MORTON, n, 0);
-	CHECK(c != NULL, "lz_cells_alloc(2, L = 1000, rc = 1, 10^6 points): %s",
-	              lz_error_message());
-	check_pairs(c, x, n, rc, want, nwant, "10^6 random points in a 2D periodic box L = 1000, "
-	            "rc = 1 (one point per cell on average; reference: a sort-and-sweep)");
+	lz_cells *c = pair_grid(rng, 2, 1000, L, 1, LZ_CELLS_MORTON, n);
+	pairs_case(c, x, x, n, rc, want, nwant, "10^6 random points in a 2D periodic box L = 1000, "
+	           "rc = 1 (one point per cell on average, pairs at exactly rc and a hair closer among "
+	           "them; reference: a sort-and-sweep)");
 	lz_cells_free(c);
 	free(want);
 	free(x);
+	gsl_rng_free(rng);
+}
+END_TEST
+
+/* ---- the whole chain, as a user runs it ---- */
+
+static int u32_cmp(const void *a, const void *b)
+{
+	uint32_t p = *(const uint32_t *)a, q = *(const uint32_t *)b;
+	return (p > q) - (p < q);
+}
+
+/* Fail unless the grid lz_cells_alloc made is the header's: in Morton order the cells
+ * sorted by their bit-interleaved codes (lz_morton), and every row of the block tables
+ * the touching cells (lz_cells_stencil), compared as sets with a hand-made grid. */
+static void check_alloc_grid(const lz_cells *c, const char *what)
+{
+	lz_cells *h = hand_grid(c->dim, c->m, c->side, c->periodic, c->order, 1, 0);
+	char b1[64];
+	int32_t cx[3] = {0, 0, 0};
+	for (size_t q = 0; c->rank && q < c->ncells; q++) {
+		bf_decode(c->dim, c->m, q, cx);
+		CHECK(c->rank[q] == h->rank[q], "%s: lz_cells_alloc stored the cell %s at place %u "
+		      "of the Morton order, but sorting the cells by their codes (bit b of x at bit "
+		      "dim·b, then y, then z) puts it at place %u: are lz_morton's codes the "
+		      "header's?", what, fmt_cell(b1, 64, c->dim, cx), c->rank[q], h->rank[q]);
+	}
+	hand_tables(h, NULL);
+	for (int half = 0; half < 2; half++) {
+		size_t w = (size_t)(half ? c->nhalf : c->nfull);
+		const uint32_t *got = half ? c->half : c->full, *want = half ? h->half : h->full;
+		uint32_t a[27], b[27];
+		for (size_t s = 0; s < c->ncells; s++) {
+			memcpy(a, got + s * w, w * sizeof *a);
+			memcpy(b, want + s * w, w * sizeof *b);
+			qsort(a, w, sizeof *a, u32_cmp);
+			qsort(b, w, sizeof *b, u32_cmp);
+			bf_coords(c, s, cx);
+			for (size_t k = 0; k < w; k++)
+				CHECK(a[k] == b[k], "%s: the %s of cell %s, as lz_cells_alloc stored it "
+				      "from lz_cells_stencil, is not the set of the %s cells: sorted, "
+				      "entry %zu is %u where %u was expected (%zu stands for a cell beyond "
+				      "a wall)", what, half ? "half block" : "block",
+				      fmt_cell(b1, 64, c->dim, cx), half ? "forward touching" : "touching",
+				      k, a[k], b[k], c->ncells);
+		}
+	}
+	lz_cells_free(h);
+}
+
+/* The cell coordinate of coordinate x by the header's rule: wrapped into [0, L) in a
+ * periodic box (a wrapped value that rounds to L was a hair below it: the last cell),
+ * clamped to the edge cells with walls, then floor(x / w). *face is set to the inner
+ * cell face x lies within round-off of (either side is right there), else to -1. */
+static int32_t bf_axis_cell(const lz_cells *c, double x, int32_t *face)
+{
+	double L = c->side;
+	int32_t m = c->m;
+	*face = -1;
+	if (c->periodic) {
+		x = fmod(x, L);
+		if (x < 0)
+			x += L;
+		if (x >= L)
+			return m - 1;
+	} else if (x <= 0) {
+		return 0;
+	} else if (x >= L) {
+		return m - 1;
+	}
+	double u = x / c->width, f = nearbyint(u);
+	if (fabs(u - f) < 1e-9 && f > 0 && f < m)
+		*face = (int32_t)f;
+	int32_t k = (int32_t)floor(u);
+	return k >= m ? m - 1 : k;
+}
+
+/* Fail unless every point sits in its cell (bf_axis_cell on each axis). */
+static void check_bins(const lz_cells *c, const double *x, size_t n, const char *what)
+{
+	int dim = c->dim;
+	char b1[64], b2[64];
+	for (size_t i = 0; i < n; i++) {
+		const double *p = x + i * (size_t)dim;
+		int32_t got[3] = {0, 0, 0}, want[3] = {0, 0, 0};
+		int ok = 1;
+		bf_coords(c, c->of[i], got);
+		for (int k = 0; k < dim; k++) {
+			int32_t face;
+			want[k] = bf_axis_cell(c, p[k], &face);
+			ok &= got[k] == want[k] || (face >= 0 && (got[k] == face || got[k] == face - 1));
+		}
+		CHECK(ok, "%s: lz_cells_bin_points put point %zu at (%.17g, %.17g%s) in the cell "
+		      "%s; it belongs to %s (lz_cells_of_point: floor(x / w) after wrapping into "
+		      "[0, L) in a periodic box, the nearest edge cell beyond a wall, m - 1 when "
+		      "round-off gives m)", what, i, p[0], p[1], dim == 3 ? ", ..." : "",
+		      fmt_cell(b1, 64, dim, got), fmt_cell(b2, 64, dim, want));
+	}
+}
+
+/* n points in grid c (random, the first eight on the box's edges: 0, a hair below L, L
+ * itself and a hair below 0 or beyond the wall), given whole periods away when shifted,
+ * else with pairs at exactly rc and a hair closer (exact_pairs): bin, link and scan
+ * them with the graded functions, checking each step. */
+static void pipeline_round(lz_cells *c, gsl_rng *rng, size_t n, int shifted, const char *what)
+{
+	int dim = c->dim;
+	double L = c->side, *x = malloc(n * (size_t)dim * sizeof *x);
+	ck_assert(x != NULL && n >= 8);
+	for (size_t k = 0; k < n * (size_t)dim; k++)
+		x[k] = gsl_rng_uniform(rng) * L;
+	double edge[4] = {0.0, nextafter(L, 0), L, c->periodic ? -1e-300 : -0.25 * c->width};
+	for (size_t e = 0; e < 8; e++)
+		x[e * (size_t)dim + e % (size_t)dim] = edge[e / 2];
+	if (shifted)
+		for (size_t k = 0; k < n * (size_t)dim; k++)
+			x[k] += L * (double)((long)gsl_rng_uniform_int(rng, 7) - 3);
+	else
+		exact_pairs(x, n, dim, L, c->cutoff);
+	CHECK(lz_cells_bin_points(c, n, x) == LZ_OK, "%s, %zu points: lz_cells_bin_points "
+	      "refused them: %s", what, n, lz_error_message());
+	check_bins(c, x, n, what);
+	lz_cells_link(c);
+	check_links(c, what);
+	size_t nwant;
+	uint64_t *want = bf_pairs(x, n, dim, L, c->periodic, c->cutoff, &nwant);
+	check_pairs(c, x, n, c->cutoff, want, nwant, what);
+	free(want);
+	free(x);
+}
+
+/* lz_cells_alloc, lz_cells_bin_points, lz_cells_link and lz_cells_pairs in a row: the
+ * grid, the bins, the lists and the pairs are each checked, so this test pays only
+ * when every graded function of the chain is right. Twice on each grid, the second
+ * time with fewer points: binning and linking again must forget the first lists. */
+LZ_TEST(pipeline_alloc_bin_link_pairs_as_a_user_does)
+{
+	static const struct {
+		int dim;
+		double L, rc;
+		int periodic;
+		lz_cells_order order;
+		int shifted;
+		size_t n;
+	} cs[] = {
+		{2, 10.0, 1.0, 1, LZ_CELLS_MORTON, 0, 600}, {2, 9.7, 1.3, 0, LZ_CELLS_ROW, 0, 500},
+		{2, 14.6, 4.8, 1, LZ_CELLS_MORTON, 1, 120}, {2, 14.6, 4.8, 0, LZ_CELLS_MORTON, 0, 120},
+		{3, 6.0, 1.0, 1, LZ_CELLS_ROW, 1, 600}, {3, 5.5, 1.1, 0, LZ_CELLS_MORTON, 0, 500},
+		{3, 4.0, 1.0, 1, LZ_CELLS_MORTON, 0, 300},
+	};
+	gsl_rng *rng = rng_new(413);
+	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
+		lz_cells *c = lz_cells_alloc(cs[k].dim, cs[k].L, cs[k].rc, cs[k].periodic, cs[k].order,
+		                             cs[k].n, 0);
+		CHECK(c != NULL, "lz_cells_alloc(%d, L = %g, rc = %g, %s, %s order): %s (it runs "
+		      "lz_cells_stencil and, in Morton order, lz_morton, and checks their answers)",
+		      cs[k].dim, cs[k].L, cs[k].rc, cs[k].periodic ? "periodic" : "walls",
+		      order_name(cs[k].order), lz_error_message());
+		char what[256];
+		snprintf(what, sizeof what, "%dD %s box L = %g, grid from lz_cells_alloc for rc = %g "
+		         "(%d^%d cells, %s order)%s", cs[k].dim, cs[k].periodic ? "periodic" : "walled",
+		         cs[k].L, cs[k].rc, c->m, cs[k].dim, order_name(cs[k].order), cs[k].shifted ?
+		         ", points given whole periods away" : "");
+		check_alloc_grid(c, what);
+		pipeline_round(c, rng, cs[k].n, cs[k].shifted, what);
+		pipeline_round(c, rng, cs[k].n / 2, cs[k].shifted, what);
+		lz_cells_free(c);
+	}
 	gsl_rng_free(rng);
 }
 END_TEST

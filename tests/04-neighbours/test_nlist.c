@@ -3,9 +3,10 @@
  * symmetric, no self entry, no duplicate) on square, triangular and cubic lattices,
  * across the periodic boundary, with r_l exactly on a lattice distance; the fast
  * refresh equals a rebuild after small moves in a dense fluid, keeps the particle of
- * thesis fig. 2.7 that the one-copy refresh loses, never writes its source, and stays
- * free of self entries and duplicates where many neighbours are shared; N = 1, N = 2
- * and a million particles.
+ * thesis fig. 2.7 that the one-copy refresh loses, never writes its source, stays
+ * free of self entries and duplicates where many neighbours are shared, and in a dilute
+ * gas is exactly its definition (the neighbours of the neighbours, missing what they
+ * cannot reach); N = 1, N = 2, N = 3 and a million particles.
  *
  * The references here use their own arithmetic (minimum image by trying the nearby
  * periodic images) and cell grids made by hand in this file, so a bug in the stage's
@@ -397,6 +398,9 @@ LZ_TEST(allpairs_matches_brute_force)
 		{LZ_LATTICE_SQUARE, 64, 200, 7.5}, {LZ_LATTICE_SQUARE8, 32, 80, 16},
 		{LZ_LATTICE_TRIANGULAR, 64, 200, 6}, {LZ_LATTICE_TRIANGULAR, 16, 60, 7.5},
 		{LZ_LATTICE_CUBIC, 16, 150, 4.5}, {LZ_LATTICE_CUBIC26, 8, 40, 2.9},
+		/* r_l = L/2, the largest allowed: a pair L/2 apart along an axis is exactly r_l
+		 * away through both images, and not listed */
+		{LZ_LATTICE_SQUARE, 8, 30, 4},
 	};
 	gsl_rng *g = rng_new(41);
 	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
@@ -438,6 +442,21 @@ LZ_TEST(allpairs_matches_brute_force)
 }
 END_TEST
 
+/* Build three times from the same sites: each build must give the list `want`. The
+ * copies take turns as the target, so the third build writes over the first one's
+ * list, which must not linger. */
+static void build_allpairs_thrice(lz_nlist *nl, const int32_t *r, const uint8_t *want,
+                                  const char *what)
+{
+	char again[200];
+	snprintf(again, sizeof again, "%s, built a third time into the copy of the first build "
+	         "(its old entries must go: t->len = 0 first)", what);
+	for (int k = 0; k < 3; k++) {
+		EXPECT(lz_nlist_build_allpairs(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+		check_list(nl, r, want, k == 2 ? again : what);
+	}
+}
+
 /* Pairs placed exactly at r_l (on an integer lattice distance) and just inside. */
 LZ_TEST(allpairs_pair_at_exactly_rl_is_not_listed)
 {
@@ -463,9 +482,7 @@ LZ_TEST(allpairs_pair_at_exactly_rl_is_not_listed)
 		snprintf(what, sizeof what, "%s lattice, r_l = %.7g, pairs placed at distances exactly "
 		         "r_l and just below", lz_lattice_name(cs[k].kind), cs[k].rl);
 		uint8_t *want = bf_matrix(cs[k].kind, cs[k].L, cs[k].n, cs[k].r, nl->rl2);
-		EXPECT(lz_nlist_build_allpairs(nl, cs[k].r) == LZ_OK, "%s: %s", what,
-		              lz_error_message());
-		check_list(nl, cs[k].r, want, what);
+		build_allpairs_thrice(nl, cs[k].r, want, what);
 		free(want);
 		lz_nlist_free(nl);
 		lz_lattice_box_free(b);
@@ -500,9 +517,7 @@ LZ_TEST(allpairs_one_particle_and_pairs_across_the_boundary)
 		         cs[k].rl);
 		uint8_t *want = bf_matrix(cs[k].kind, cs[k].L, cs[k].n, cs[k].r, nl->rl2);
 		EXPECT(count_ones(want, cs[k].n * cs[k].n) == 2 * cs[k].pairs, "test set-up");
-		EXPECT(lz_nlist_build_allpairs(nl, cs[k].r) == LZ_OK, "%s: %s", what,
-		              lz_error_message());
-		check_list(nl, cs[k].r, want, what);
+		build_allpairs_thrice(nl, cs[k].r, want, what);
 		free(want);
 		lz_nlist_free(nl);
 		lz_lattice_box_free(b);
@@ -603,20 +618,30 @@ LZ_TEST(cells_all_particles_in_one_cell)
 {
 	/* Forty particles in the last cell of the grid (its block wraps round the box),
 	 * two pairs of them on the same site: distinct particles at distance 0 are
-	 * neighbours (only i itself is left off its row). */
+	 * neighbours (only i itself is left off its row). Six more sit just across the
+	 * box's faces and its corner, in cells that touch the crowded one only through the
+	 * wrap: each is a neighbour of some of the forty. */
 	gsl_rng *g = rng_new(53);
 	for (int three = 0; three < 2; three++) {
 		lz_lattice_kind kind = three ? LZ_LATTICE_CUBIC : LZ_LATTICE_SQUARE;
 		int dim = kdim(kind);
-		size_t n = 40;
-		int32_t r[40 * 3];
-		for (size_t k = 0; k < n * (size_t)dim; k++)
+		size_t n = 46;
+		int32_t r[46 * 3];
+		for (size_t k = 0; k < 40 * (size_t)dim; k++)
 			r[k] = 56 + (int32_t)gsl_rng_uniform_int(g, 8);
 		memcpy(r + 5 * dim, r + 4 * dim, (size_t)dim * sizeof *r);
 		memcpy(r + 39 * dim, r, (size_t)dim * sizeof *r);
-		char what[160];
+		for (size_t e = 0; e < 6; e++) {
+			int32_t *p = r + (40 + e) * (size_t)dim;
+			for (int a = 0; a < dim; a++)
+				p[a] = e == 5 ? 1 : 60 + (int32_t)(e % 4);
+			if (e < 5)
+				p[e % (size_t)dim] = (int32_t)(e % 3);
+		}
+		char what[200];
 		snprintf(what, sizeof what, "build from cells, %s lattice: 40 particles crowded in "
-		         "one cell of side 8 (two pairs on one site)", lz_lattice_name(kind));
+		         "one cell of side 8 (two pairs on one site), 6 more just across the box's "
+		         "faces and corner", lz_lattice_name(kind));
 		cells_case(kind, 64, 8, 7.5, n, r, 1, g, what);
 	}
 	gsl_rng_free(g);
@@ -668,7 +693,6 @@ LZ_TEST(cells_refuses_a_grid_that_cannot_work)
 	lz_nlist *nt = nl_new(bt, N, 7);
 	uint8_t *want = bf_matrix(LZ_LATTICE_SQUARE, 64, N, r, nl->rl2);
 	fill_list(nl, want);
-	free(want);
 
 	lz_cells *narrow = grid_new(2, 64, 4, 0, g);  /* 4 < reach 8 */
 	grid_bin(narrow, N, r);
@@ -693,6 +717,19 @@ LZ_TEST(cells_refuses_a_grid_that_cannot_work)
 	grid_bin(fresh, N, r);
 	fresh->shift = -1;  /* as lz_cells_alloc makes it for continuous points */
 	refused(nl, fresh, r, "a grid for continuous points (shift = -1), not for lattice sites");
+	/* What can work must not be refused: cells exactly as wide as the reach 8 of
+	 * r_l = 7.5, stored out of row order. */
+	lz_cells *right = grid_new(2, 64, 8, 1, g);
+	grid_bin(right, N, r);
+	EXPECT(lz_nlist_build_cells(nl, right, r) == LZ_OK, "lz_nlist_build_cells refused "
+	       "cells of side 8 for r_l = 7.5 on the square lattice, exactly its reach ceil(7.5) "
+	       "= 8: a pair within r_l differs by at most 7 < 8 on each axis, so it sits in "
+	       "touching cells and the grid is fine (refuse only width < reach): %s",
+	       lz_error_message());
+	check_list(nl, r, want, "build from cells exactly as wide as the reach of r_l, after the "
+	           "refusals");
+	free(want);
+	grid_free(right);
 
 	grid_free(narrow);
 	grid_free(tri8);
@@ -866,26 +903,33 @@ END_TEST
 /* Thesis fig. 2.7 on the square lattice, r_l = 5, particles A = 0, B = 1, C = 2:
  * before, A-B at 4 and A-C at 3 are listed, B-C at 7 is not; then C jumps past A to
  * 3 from B and 7 from A. The one-copy refresh rewrites A's row first and drops C, so
- * B's scan of A's row no longer finds C. Done twice: in the open and with the three
- * straddling the box's edge. */
+ * B's scan of A's row no longer finds C. A fourth particle D = 3 makes a triangle with
+ * A and B before (√13 from each), then steps to √17 from A and exactly r_l from B:
+ * A meets D on its own row and again on B's (listed once), and B must drop it (the
+ * rule is d < r_l). Done twice: in the open and with the four straddling the box's
+ * edge. */
 LZ_TEST(refresh_fig27_second_copy_keeps_c)
 {
-	static const int32_t before[] = {20, 20, 24, 20, 17, 20};
-	static const int32_t after[] = {20, 20, 24, 20, 27, 20};
+	static const int32_t before[] = {20, 20, 24, 20, 17, 20, 22, 23};
+	static const int32_t after[] = {20, 20, 24, 20, 27, 20, 21, 24};
 	static const int32_t shift[2][2] = {{0, 0}, {-22, 45}};
+	enum { N = 4 };
 	lz_lattice_box *b = box_new(LZ_LATTICE_SQUARE, 64);
 	for (int s = 0; s < 2; s++) {
-		int32_t r0[6], r1[6];
-		for (int k = 0; k < 6; k++) {
+		int32_t r0[2 * N], r1[2 * N];
+		for (int k = 0; k < 2 * N; k++) {
 			r0[k] = (before[k] + shift[s][k % 2] + 64) % 64;
 			r1[k] = (after[k] + shift[s][k % 2] + 64) % 64;
 		}
-		uint8_t *w0 = bf_matrix(LZ_LATTICE_SQUARE, 64, 3, r0, 25);
-		uint8_t *w1 = bf_matrix(LZ_LATTICE_SQUARE, 64, 3, r1, 25);
-		EXPECT(w0[0 * 3 + 1] && w0[0 * 3 + 2] && !w0[1 * 3 + 2] && w1[0 * 3 + 1] &&
-		              w1[1 * 3 + 2] && !w1[0 * 3 + 2], "test set-up: the geometry of fig. 2.7");
+		uint8_t *w0 = bf_matrix(LZ_LATTICE_SQUARE, 64, N, r0, 25);
+		uint8_t *w1 = bf_matrix(LZ_LATTICE_SQUARE, 64, N, r1, 25);
+		EXPECT(w0[0 * N + 1] && w0[0 * N + 2] && !w0[1 * N + 2] && w0[0 * N + 3] &&
+		       w0[1 * N + 3] && w1[0 * N + 1] && w1[1 * N + 2] && !w1[0 * N + 2] &&
+		       w1[0 * N + 3] && !w1[1 * N + 3] && !w1[2 * N + 3] &&
+		       bf_min_d2(LZ_LATTICE_SQUARE, 64, r1 + 2, r1 + 6) == 25,
+		       "test set-up: the geometry of fig. 2.7");
 		/* The example does what the thesis says: one copy loses C. */
-		lz_nlist *one = nl_new(b, 3, 5);
+		lz_nlist *one = nl_new(b, N, 5);
 		fill_list(one, w0);
 		ck_assert(lz_nlist_refresh_single(one, r1) == LZ_OK);
 		size_t len;
@@ -894,11 +938,12 @@ LZ_TEST(refresh_fig27_second_copy_keeps_c)
 		              "lost C from B's row");
 		lz_nlist_free(one);
 
-		lz_nlist *nl = nl_new(b, 3, 5);
+		lz_nlist *nl = nl_new(b, N, 5);
 		fill_list(nl, w0);
-		const char *what = s ? "thesis fig. 2.7 (A, B, C across the box's edge): C moved "
-		                       "from A's range into B's"
-		                     : "thesis fig. 2.7: C moved from A's range into B's";
+		const char *what = s ? "thesis fig. 2.7 (A, B, C, D across the box's edge): C moved "
+		                       "from A's range into B's, D to exactly r_l from B"
+		                     : "thesis fig. 2.7: C moved from A's range into B's, D to "
+		                       "exactly r_l from B";
 		EXPECT(lz_nlist_refresh(nl, r1) == LZ_OK, "%s: %s", what, lz_error_message());
 		row = lz_nlist_row(nl, 1, &len);
 		int has_c = 0;
@@ -922,17 +967,23 @@ LZ_TEST(refresh_never_writes_the_source)
 	gsl_rng *g = rng_new(73);
 	enum { L = 64 };
 	const int64_t sigma2 = 16;
-	size_t n = 100;
-	int32_t r[200];
+	size_t n = 150;
+	int32_t r[300];
 	ck_assert(rsa_sites(g, LZ_LATTICE_SQUARE, L, sigma2, n, r) == n);
 	lz_lattice_box *b = box_new(LZ_LATTICE_SQUARE, L);
-	lz_nlist *nl = nl_new(b, n, 8);
+	lz_nlist *nl = nl_new(b, n, 12);
 	uint8_t *want = bf_matrix(LZ_LATTICE_SQUARE, L, n, r, nl->rl2);
 	fill_list(nl, want);
-	free(want);
 	uint32_t *start = malloc((n + 1) * sizeof *start);
 	for (int round = 0; round < 3; round++) {
+		char what[160];
+		snprintf(what, sizeof what, "refresh %d of 150 hard disks (diameter 4, r_l = 12) "
+		         "after moves of one step", round + 1);
 		hard_moves(g, LZ_LATTICE_SQUARE, L, sigma2, n, r, 1);
+		uint8_t *old = want;
+		want = bf_matrix(LZ_LATTICE_SQUARE, L, n, r, nl->rl2);
+		entered_via_common(old, want, n, what);
+		free(old);
 		int cur = nl->cur;
 		const lz_nbuf *s = &nl->buf[cur];
 		size_t len = s->len;
@@ -948,8 +999,93 @@ LZ_TEST(refresh_never_writes_the_source)
 		              "other copy only (thesis fig. 2.7: a row rewritten in place hides the "
 		              "particles it dropped from the rows scanned after it)", round + 1, cur);
 		free(idx);
+		/* A source left alone is not enough: the new list must be the right one. */
+		check_list(nl, r, want, what);
+		check_marks_clear(nl, what);
 	}
+	free(want);
 	free(start);
+	lz_nlist_free(nl);
+	lz_lattice_box_free(b);
+	gsl_rng_free(g);
+}
+END_TEST
+
+/* The refresh's result by its definition (lz/nlist.h): j on row i when j != i is
+ * within r_l now (now[]) and was on i's source row or on the source row of a particle
+ * there (src[]). Symmetric when src is. */
+static uint8_t *spec_refresh(const uint8_t *src, const uint8_t *now, size_t n)
+{
+	uint8_t *w = calloc(n * n, 1);
+	ck_assert(w != NULL);
+	for (size_t i = 0; i < n; i++)
+		for (size_t j = 0; j < n; j++) {
+			int cand = src[i * n + j];
+			for (size_t k = 0; k < n && !cand; k++)
+				cand = src[i * n + k] && src[k * n + j];
+			w[i * n + j] = now[i * n + j] && cand;
+		}
+	return w;
+}
+
+/* Fail if a row of the list in use holds a pair that is within r_l but that the
+ * definition leaves out (now[] but not want[]): found beyond the rows it may read. */
+static void check_no_outsider(const lz_nlist *nl, const uint8_t *now, const uint8_t *want,
+                              const char *what)
+{
+	size_t n = nl->n;
+	for (size_t i = 0; i < n; i++) {
+		size_t len;
+		const uint32_t *row = lz_nlist_row(nl, i, &len);
+		for (size_t k = 0; k < len; k++) {
+			uint32_t j = row[k];
+			EXPECT(j >= n || !now[i * n + j] || want[i * n + j], "%s: particle %u came "
+			       "within r_l of %zu and is on its row, but it was on neither %zu's source "
+			       "row nor the source row of any particle there: the refresh reads only "
+			       "those rows and must miss such a pair (lz/nlist.h, the bet on density) — "
+			       "is it rebuilding from all pairs, or from cells?", what, j, i, i);
+		}
+	}
+}
+
+/* A dilute gas: 60 particles on a 64² square box, r_l = 6, three random unit steps per
+ * particle (no hard core) between refreshes. Some pairs come within r_l with no
+ * common neighbour, and the refresh must miss them, as its definition says; the list
+ * in use must be exactly that definition applied to the source, every time (the source
+ * of the next refresh being the incomplete list of the last). */
+LZ_TEST(refresh_dilute_gas_keeps_to_the_neighbours_of_neighbours)
+{
+	enum { L = 64, N = 60 };
+	gsl_rng *g = rng_new(83);
+	int32_t r[2 * N];
+	rand_sites(g, 2, L, N, r);
+	lz_lattice_box *b = box_new(LZ_LATTICE_SQUARE, L);
+	lz_nlist *nl = nl_new(b, N, 6);
+	uint8_t *src = bf_matrix(LZ_LATTICE_SQUARE, L, N, r, nl->rl2);
+	fill_list(nl, src);
+	size_t lost = 0, found = 0;
+	for (int round = 1; round <= 4; round++) {
+		char what[160];
+		snprintf(what, sizeof what, "refresh %d of a dilute gas of 60 particles (r_l = 6, "
+		         "three random steps each between refreshes)", round);
+		hard_moves(g, LZ_LATTICE_SQUARE, L, 0, N, r, 3);
+		uint8_t *now = bf_matrix(LZ_LATTICE_SQUARE, L, N, r, nl->rl2);
+		uint8_t *want = spec_refresh(src, now, N);
+		for (size_t k = 0; k < (size_t)N * N; k++) {
+			lost += now[k] && !want[k];
+			found += want[k] && !src[k];
+		}
+		EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+		check_no_outsider(nl, now, want, what);
+		check_list(nl, r, want, what);
+		check_marks_clear(nl, what);
+		free(now);
+		free(src);
+		src = want;
+	}
+	EXPECT(lost > 0 && found > 0, "test set-up: %zu entries lost, %zu found through a "
+	       "neighbour's row; both must happen", lost, found);
+	free(src);
 	lz_nlist_free(nl);
 	lz_lattice_box_free(b);
 	gsl_rng_free(g);
@@ -999,6 +1135,39 @@ LZ_TEST(refresh_no_self_no_duplicates_in_clusters)
 }
 END_TEST
 
+/* Three particles straddling the box's edge, r_l = 3. First thesis fig. 2.7 across
+ * it: A = 0 at (0, 10) is 2 from B = 1 at (62, 10) and from C = 2 at (2, 10), which
+ * are 4 apart; C jumps to (61, 11), √10 from A and √2 from B. A's row, done first,
+ * drops C, and B finds C only on A's SOURCE row. Then C steps to (63, 11), √2 from
+ * both: A and C meet again through B, and the three are all neighbours. A last refresh
+ * without a move starts from that triangle, where each particle meets each other one
+ * twice (on its own row and on the third one's): listed once. */
+static void three_across_the_edge(const lz_lattice_box *b)
+{
+	lz_nlist *nl = nl_new(b, 3, 3);
+	int32_t r[6] = {0, 10, 62, 10, 61, 11};
+	uint8_t star[9] = {0, 1, 1, 1, 0, 0, 1, 0, 0}, chain[9] = {0, 1, 0, 1, 0, 1, 0, 1, 0};
+	uint8_t all[9] = {0, 1, 1, 1, 0, 1, 1, 1, 0};
+	fill_list(nl, star);
+	const char *what = "refresh of A, B, C across the box's edge: C left A's range for B's "
+	                   "(fig. 2.7; B's source row holds A, A's source row holds C)";
+	EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	check_list(nl, r, chain, what);
+	check_marks_clear(nl, what);
+	r[4] = 63;
+	what = "refresh of A, B, C across the box's edge: C came back within r_l of A (√2), "
+	       "through their common neighbour B";
+	EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	check_list(nl, r, all, what);
+	check_marks_clear(nl, what);
+	what = "refresh of A, B, C, all three neighbours, without a move (every one met twice "
+	       "on the rows scanned: listed once)";
+	EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	check_list(nl, r, all, what);
+	check_marks_clear(nl, what);
+	lz_nlist_free(nl);
+}
+
 LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 {
 	lz_lattice_box *b = box_new(LZ_LATTICE_SQUARE, 64);
@@ -1008,6 +1177,18 @@ LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 	fill_list(nl, none);
 	EXPECT(lz_nlist_refresh(nl, one) == LZ_OK, "%s", lz_error_message());
 	check_list(nl, one, none, "refresh of a single particle (its row stays empty)");
+	lz_nlist_free(nl);
+
+	/* Two particles with empty rows drift within r_l of each other: a refresh reads only
+	 * the source rows, so an empty row gains nobody (lz/nlist.h) — a rebuild would list
+	 * them, the refresh must not. */
+	nl = nl_new(b, 2, 3);
+	int32_t lone[4] = {10, 10, 12, 11};
+	fill_list(nl, none);
+	EXPECT(lz_nlist_refresh(nl, lone) == LZ_OK, "%s", lz_error_message());
+	check_list(nl, lone, none, "refresh of two particles whose source rows are empty, now √5 "
+	           "apart (r_l = 3): an empty row gains nobody, the refresh reads only the source "
+	           "rows (is it rebuilding from all pairs?)");
 	lz_nlist_free(nl);
 
 	/* Two neighbours across the edge; both step across it and stay neighbours; then
@@ -1026,7 +1207,16 @@ LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 	check_list(nl, two, none, "refresh of two particles that moved √10 apart (r_l = 3: no "
 	           "longer neighbours)");
 	check_marks_clear(nl, "refresh of two particles");
+	/* Neighbours 2 apart across the edge step to exactly r_l = 3 apart: no longer
+	 * neighbours (d < r_l, strictly). */
+	int32_t edge[4] = {1, 5, 63, 5};
+	fill_list(nl, pair);
+	edge[2] = 62;
+	EXPECT(lz_nlist_refresh(nl, edge) == LZ_OK, "%s", lz_error_message());
+	check_list(nl, edge, none, "refresh of two neighbours that moved to exactly r_l = 3 apart "
+	           "across the box's edge (d < r_l strictly: no longer neighbours)");
 	lz_nlist_free(nl);
+	three_across_the_edge(b);
 	lz_lattice_box_free(b);
 }
 END_TEST

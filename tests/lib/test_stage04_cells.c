@@ -117,6 +117,24 @@ LZ_TEST(cells_alloc_lattice_rejects_bad_input)
 }
 END_TEST
 
+/* A cutoff far below the box allows more cells than LZ_CELLS_MAX: the grid stops at
+ * the largest side that keeps m^dim within it (2048 in 2D, 161 in 3D), with cells
+ * wider than the cutoff. */
+LZ_TEST(cells_alloc_caps_the_grid_at_the_most_cells)
+{
+	for (int dim = 2; dim <= 3; dim++) {
+		lz_cells *c = grid(dim, 1e4, 1e-3, 1, LZ_CELLS_ROW, 1, 0);
+		int32_t want = dim == 2 ? 2048 : 161;
+		ck_assert_msg(c->m == want && c->ncells <= LZ_CELLS_MAX &&
+		              (size_t)(c->m + 1) * (c->m + 1) * (dim == 3 ? (size_t)(c->m + 1) : 1) >
+		                      LZ_CELLS_MAX && c->width >= 1e-3,
+		              "%dD, L = 1e4, rc = 1e-3: m = %d, %zu cells (the most is %zu, side %d)",
+		              dim, c->m, c->ncells, LZ_CELLS_MAX, want);
+		lz_cells_free(c);
+	}
+}
+END_TEST
+
 LZ_TEST(cells_alloc_sizes_the_grid)
 {
 	lz_cells *c = grid(2, 10, 1, 1, LZ_CELLS_ROW, 100, 0);
