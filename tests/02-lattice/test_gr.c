@@ -53,7 +53,9 @@ static void brute_counts(lz_lattice_kind kind, int nshells, uint64_t *count)
 
 static void check_table24(lz_lattice_kind kind, const uint64_t *want)
 {
+	/* count[] is an output: garbage in it must not show (set, do not add). */
 	uint64_t got[10];
+	memset(got, 0xA5, sizeof got);
 	int status = lz_shell_counts(kind, 10, got);
 	ck_assert_msg(status == LZ_OK, "lz_shell_counts(%s, 10) returned %d: %s",
 	              lz_lattice_name(kind), status, lz_error_message());
@@ -101,17 +103,18 @@ LZ_TEST(shell_counts_brute_force_many_shells)
 		lz_lattice_kind kind = cases[c].kind;
 		int ns = cases[c].nshells;
 		brute_counts(kind, ns, want);
+		memset(got, 0xA5, sizeof got);
 		ck_assert_msg(lz_shell_counts(kind, ns, got) == LZ_OK, "lz_shell_counts(%s, %d): %s",
 		              lz_lattice_name(kind), ns, lz_error_message());
 		for (int k = 0; k < ns; k++)
-			ck_assert_msg(got[k] == want[k], "%s lattice with %d shells: shell [%d, %d) "
-			              "holds %" PRIu64 " lattice points, counted %" PRIu64 " — %s",
-			              lz_lattice_name(kind), ns, k, k + 1, want[k], got[k],
-			              kind == LZ_LATTICE_TRIANGULAR && got[k] < want[k]
-			              ? "in sheared coordinates a circle of radius r reaches |dx| = "
-			                "2r/√3 > r: the loop must go that far"
-			              : "is floor(√d2) computed exactly (an integer root, not a "
-			                "rounded sqrt)?");
+			LZ_REQUIRE(got[k] == want[k], "%s lattice with %d shells: shell [%d, %d) "
+			           "holds %" PRIu64 " lattice points, counted %" PRIu64 " — %s",
+			           lz_lattice_name(kind), ns, k, k + 1, want[k], got[k],
+			           kind == LZ_LATTICE_TRIANGULAR && got[k] < want[k]
+			           ? "in sheared coordinates a circle of radius r reaches |dx| = "
+			             "2r/√3 > r: the loop must go that far"
+			           : "is floor(√d2) computed exactly (an integer root, not a "
+			             "rounded sqrt)?");
 	}
 }
 END_TEST
@@ -128,6 +131,23 @@ LZ_TEST(shell_counts_bad_input)
 		              "LZ_EINVAL and write nothing", bad[i].kind, bad[i].nshells, status,
 		              guard[0]);
 	}
+	/* The smallest allowed inputs: one shell holds the origin alone, two add the
+	 * nearest neighbours (table 2.4); nothing beyond count[nshells - 1] is written. */
+	static const lz_lattice_kind kinds[] = {LZ_LATTICE_SQUARE8, LZ_LATTICE_TRIANGULAR,
+	                                        LZ_LATTICE_CUBIC18};
+	const uint64_t *tables[] = {table24_square, table24_triangular, table24_cubic};
+	for (int k = 0; k < 3; k++)
+		for (int ns = 1; ns <= 2; ns++) {
+			uint64_t c[3] = {99, 99, 99};
+			int status = lz_shell_counts(kinds[k], ns, c);
+			ck_assert_msg(status == LZ_OK && c[0] == 1 && (ns == 1 || c[1] == tables[k][1]) &&
+			              c[ns] == 99, "lz_shell_counts(%s, %d), the smallest allowed: returned "
+			              "%d with counts %" PRIu64 ", %" PRIu64 ", %" PRIu64 "; expected 1 (the "
+			              "origin)%s and count[%d] untouched — is d2 = k² put in the outer "
+			              "shell k, and are exactly nshells entries set?",
+			              lz_lattice_name(kinds[k]), ns, status, c[0], c[1], c[2],
+			              ns == 2 ? " then the nearest neighbours of table 2.4" : "", ns);
+		}
 }
 END_TEST
 
@@ -306,6 +326,24 @@ LZ_TEST(gr_raw_shows_lattice_noise)
 			              "g divided by the exact shell area π(2k+1) over the box area V·cell?",
 			              lz_lattice_name(kinds[c]), k, raw[k], m, cor[k]);
 		}
+		/* The raw normalisation on its own: over the whole disk r < 16 the ideal gas
+		 * puts S·N(N-1)/2·count/V pairs, so Σ pairs / Σ expected-by-area is the lattice
+		 * measure of the disk, Σ count·cell / Σ exact, within 1/√(pairs). */
+		double pairs = 0, area = 0, points = 0;
+		for (int k = 0; k < 16; k++) {
+			double exact = M_PI * (2.0 * k + 1.0);
+			pairs += raw[k] * exact;
+			area += exact;
+			points += (double)g->lattice[k];
+		}
+		double disk = pairs / area, mdisk = points * (kinds[c] == LZ_LATTICE_TRIANGULAR ?
+		              sqrt(3.0) / 2.0 : 1.0) / area;
+		double npairs = (double)g->nsamples * 64.0 * 63.0 / 2.0 * points / 4096.0;
+		double zd = (disk - mdisk) / (mdisk / sqrt(npairs));
+		ck_assert_msg(fabs(zd) < 5.0, "%s lattice ideal gas: raw g averaged over the disk "
+		              "r < 16 (area-weighted) is %.5f, the disk's lattice measure is %.5f, %.1f "
+		              "error bars apart — raw g = pairs / (S·N(N-1)/2 · π(2k+1) / (V·cell))",
+		              lz_lattice_name(kinds[c]), disk, mdisk, zd);
 		/* Shell [0, 1) holds one site but has area π: raw g ≈ 1/π (√3/(2π) triangular),
 		 * tens of error bars from 1 — the lattice noise the correction removes. */
 		double z0 = (raw[0] - 1.0) / sigma(g, 0);
@@ -328,20 +366,44 @@ LZ_TEST(gr_empty_accumulator_is_an_error)
 	              "to normalise it must return LZ_EINVAL and write nothing (0/0 is NaN)",
 	              status, raw[0], cor[0]);
 	lz_gr_free(g);
+	/* Once samples are closed it normalises. Triangular, V = 256 sites, N = 2: one pair
+	 * per sample at distance 1, two samples. An ideal gas would put count(1)/V = 12/256
+	 * of a pair per sample in shell 1, so corrected g = V/12 there, and the raw g =
+	 * V·cell/(3π), the shell's area being 3π; 0 elsewhere. */
+	g = gr_by_hand(LZ_LATTICE_TRIANGULAR, 16, 4, 2);
+	for (int s = 0; s < 2; s++) {
+		lz_gr_add_pair(g, 1);
+		lz_gr_end_sample(g);
+	}
+	ck_assert_msg(lz_gr_result(g, raw, cor) == LZ_OK, "lz_gr_result after two samples: %s",
+	              lz_error_message());
+	double wcor = 256.0 / 12.0, wraw = 256.0 * sqrt(3.0) / 2.0 / (3.0 * M_PI);
+	ck_assert_msg(fabs(cor[1] - wcor) < 1e-12 * wcor && fabs(raw[1] - wraw) < 1e-12 * wraw &&
+	              cor[0] == 0 && raw[2] == 0, "triangular, V = 256, N = 2, 2 samples of one "
+	              "pair at r = 1: corrected g(1) = %.15g, raw g(1) = %.15g; expected V/12 = "
+	              "%.15g and V·(√3/2)/(3π) = %.15g — divide by S·N(N-1)/2 pairs (here 2), by "
+	              "count(k)/V (corrected) or by the area over V·cell (raw)", cor[1], raw[1],
+	              wcor, wraw);
+	lz_gr_free(g);
 }
 END_TEST
 
 LZ_TEST(gr_pipeline_from_positions)
 {
 	/* The library's path end to end: box, accumulator, all pairs, result. A full
-	 * triangular lattice of side 16 gives corrected g = V/(V-1) in every shell k >= 1,
-	 * and the accumulator's lattice counts are table 2.4's. */
+	 * triangular lattice of side 16, added twice, gives corrected g = V/(V-1) in every
+	 * shell k >= 1 (raw g that times the lattice measure), and the accumulator's
+	 * lattice counts are table 2.4's. */
 	const int32_t L = 16;
 	const size_t V = (size_t)L * L;
 	lz_lattice_box *b = lz_lattice_box_alloc(LZ_LATTICE_TRIANGULAR, L);
 	lz_gr *g = lz_gr_alloc(LZ_LATTICE_TRIANGULAR, L, 8, V);
 	ck_assert_msg(b && g, "allocating a side-16 triangular box and g(r) up to r = 8 failed: %s",
 	              lz_error_message());
+	for (int32_t u = 0; u < L; u++)
+		ck_assert_msg(b->dc[u] == (2 * u <= L ? u : u - L), "precondition: the box's table "
+		              "has dc[%d] = %d, expected %d — fix lz_lattice_dctable first", u, b->dc[u],
+		              2 * u <= L ? u : u - L);
 	for (int k = 0; k < 8; k++)
 		ck_assert_msg(g->lattice[k] == table24_triangular[k], "lz_gr_alloc's lattice count "
 		              "of shell %d is %" PRIu64 ", table 2.4 says %" PRIu64 " (it comes from "
@@ -352,6 +414,7 @@ LZ_TEST(gr_pipeline_from_positions)
 		r[2 * i + 1] = (int32_t)(i / (size_t)L);
 	}
 	ck_assert(lz_gr_add_config(g, b, r) == LZ_OK);
+	ck_assert(lz_gr_add_config(g, b, r) == LZ_OK);
 	double raw[8], cor[8];
 	ck_assert_msg(lz_gr_result(g, raw, cor) == LZ_OK, "lz_gr_result: %s", lz_error_message());
 	for (int k = 1; k < 8; k++)
@@ -360,10 +423,18 @@ LZ_TEST(gr_pipeline_from_positions)
 		              "expected %.15g — if only the outer shells are off, the minimum image "
 		              "on the rhombus (lz_lattice_min_dist2) needs the hexagon correction",
 		              k, cor[k], (double)V / (V - 1.0));
-	ck_assert_msg(g->beyond == V * (V - 1) / 2 - (size_t)(V / 2 * (table24_triangular[1] +
-	              table24_triangular[2] + table24_triangular[3] + table24_triangular[4] +
-	              table24_triangular[5] + table24_triangular[6] + table24_triangular[7])),
-	              "pairs beyond r = 8: %" PRIu64, g->beyond);
+	for (int k = 1; k < 8; k++) {
+		double want = (double)V / (V - 1.0) * measure(LZ_LATTICE_TRIANGULAR, k, g->lattice[k]);
+		ck_assert_msg(fabs(raw[k] - want) < 1e-12 * want, "full triangular lattice: raw g in "
+		              "shell %d is %.15g, expected %.15g = V/(V-1) times the lattice measure "
+		              "count·(√3/2)/(π(2k+1))", k, raw[k], want);
+	}
+	uint64_t inside = 0;
+	for (int k = 1; k < 8; k++)
+		inside += V / 2 * table24_triangular[k];
+	ck_assert_msg(g->beyond == 2 * (V * (V - 1) / 2 - inside), "pairs beyond r = 8 over two "
+	              "samples: %" PRIu64 ", expected %" PRIu64, g->beyond,
+	              (uint64_t)(2 * (V * (V - 1) / 2 - inside)));
 	free(r);
 	lz_gr_free(g);
 	lz_lattice_box_free(b);

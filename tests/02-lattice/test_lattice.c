@@ -99,15 +99,27 @@ LZ_TEST(dist2_triangular_matches_sheared_cartesian)
 		              "+ dy² (the six neighbours (±1,0), (0,±1), ±(1,-1) all at 1)",
 		              known[i].x, known[i].y, known[i].d2, got);
 	}
+	/* Far displacements, beyond 32-bit products: 4 d² = (2dx + dy)² + 3 dy² holds
+	 * exactly in 64 bits for these. */
+	static const int32_t far[][2] = {{65536, 32768}, {-40000, 50000}, {46341, -1},
+	                                 {1 << 29, 1 << 29}, {1 << 29, -(1 << 28)},
+	                                 {-(1 << 29), (1 << 29) - 1}};
+	for (size_t i = 0; i < sizeof far / sizeof far[0]; i++) {
+		int64_t x = far[i][0], y = far[i][1], want = ((2 * x + y) * (2 * x + y) + 3 * y * y) / 4;
+		int64_t got = lz_lattice_dist2(LZ_LATTICE_TRIANGULAR, far[i][0], far[i][1], 0);
+		ck_assert_msg(got == want, "triangular lattice: distance² of (%d, %d) is %" PRId64
+		              ", got %" PRId64 " — widen to int64_t before multiplying", far[i][0],
+		              far[i][1], want, got);
+	}
 	for (int32_t x = -30; x <= 30; x++)
 		for (int32_t y = -30; y <= 30; y++) {
 			double cx = x + 0.5 * y, cy = 0.5 * sqrt(3.0) * y;
 			double want = cx * cx + cy * cy;
 			int64_t got = lz_lattice_dist2(LZ_LATTICE_TRIANGULAR, x, y, 7);
-			ck_assert_msg(fabs((double)got - want) < 1e-9 * (1.0 + want), "triangular "
-			              "lattice: (%d, %d) is at Cartesian distance² %.6f, got %" PRId64
-			              " (with dz = 7, which a 2D lattice must ignore) — is the sign of "
-			              "the cross term dx·dy right?", x, y, want, got);
+			LZ_REQUIRE(fabs((double)got - want) < 1e-9 * (1.0 + want), "triangular "
+			           "lattice: (%d, %d) is at Cartesian distance² %.6f, got %" PRId64
+			           " (with dz = 7, which a 2D lattice must ignore) — is the sign of "
+			           "the cross term dx·dy right?", x, y, want, got);
 		}
 }
 END_TEST
@@ -148,9 +160,9 @@ LZ_TEST(dctable_is_the_saw_tooth)
 		              "%" PRId64 ", a power of two: %s", L, lz_error_message());
 		for (int64_t u = 0; u < L; u++) {
 			int64_t d = t[u];
-			ck_assert_msg(((d - u) % L) == 0 && 2 * d <= L && 2 * d > -L, "side %" PRId64
-			              ": dc[%" PRId64 "] = %" PRId64 " — it must be u or u - L, "
-			              "whichever is in (-L/2, L/2]", L, u, d);
+			LZ_REQUIRE(((d - u) % L) == 0 && 2 * d <= L && 2 * d > -L, "side %" PRId64
+			           ": dc[%" PRId64 "] = %" PRId64 " — it must be u or u - L, "
+			           "whichever is in (-L/2, L/2]", L, u, d);
 		}
 	}
 	free(t);
@@ -191,6 +203,21 @@ LZ_TEST(dctable_rejects_bad_sides)
 		ck_assert_msg(guard[0] == 7 && guard[3] == 7, "side %" PRId64 " was refused but the "
 		              "table was written: check the side before touching dc", bad[i]);
 	}
+	/* The allowed sides next to the refused ones are accepted and filled: u up to L/2
+	 * stays, above it u - L (the smallest, 1 and 2, by hand: {0} and {0, 1}). */
+	static const int64_t good[] = {1, 2, 4, 16, 64, 128, 65536};
+	int32_t *t = malloc(LZ_LATTICE_SIDE_MAX * sizeof *t);
+	for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+		int64_t L = good[i];
+		ck_assert_msg(lz_lattice_dctable(L, t) == LZ_OK, "lz_lattice_dctable refused side %"
+		              PRId64 ", a power of two in [1, %d]: %s", L, LZ_LATTICE_SIDE_MAX,
+		              lz_error_message());
+		for (int64_t u = 0; u < L; u++)
+			LZ_REQUIRE(t[u] == (2 * u <= L ? u : u - L), "side %" PRId64 ", next to a refused "
+			           "side: dc[%" PRId64 "] = %d, expected %" PRId64, L, u, t[u],
+			           2 * u <= L ? u : u - L);
+	}
+	free(t);
 }
 END_TEST
 
@@ -204,9 +231,9 @@ static void min_image_against_brute_force(lz_lattice_kind kind, int32_t L, const
 			for (int32_t z = zlo; z <= zhi; z++) {
 				int64_t want = brute_min(kind, L, x, y, z);
 				int64_t got = lz_lattice_min_dist2(b, x, y, z);
-				ck_assert_msg(got == want, "%s lattice, box side %d: the nearest image of "
-				              "(%d, %d, %d) is at distance² %" PRId64 ", got %" PRId64 " — %s",
-				              lz_lattice_name(kind), L, x, y, z, want, got, hint);
+				LZ_REQUIRE(got == want, "%s lattice, box side %d: the nearest image of "
+				           "(%d, %d, %d) is at distance² %" PRId64 ", got %" PRId64 " — %s",
+				           lz_lattice_name(kind), L, x, y, z, want, got, hint);
 			}
 	lz_lattice_box_free(b);
 }
@@ -254,18 +281,18 @@ LZ_TEST(min_image_largest_box_and_mask_boundary)
 				int64_t want = brute_min(all_kinds[k], L, (int64_t)x % L, (int64_t)y % L,
 				                         (int64_t)z % L);
 				int64_t got = lz_lattice_min_dist2(b, x, y, z);
-				ck_assert_msg(got == want, "%s lattice, box side %d: the raw displacement "
-				              "(%d, %d, %d) has nearest-image distance² %" PRId64 ", got %"
-				              PRId64 " — mask with (uint32_t) so that negative and huge "
-				              "differences wrap, and square in int64_t",
-				              lz_lattice_name(all_kinds[k]), L, x, y, z, want, got);
+				LZ_REQUIRE(got == want, "%s lattice, box side %d: the raw displacement "
+				           "(%d, %d, %d) has nearest-image distance² %" PRId64 ", got %"
+				           PRId64 " — mask with (uint32_t) so that negative and huge "
+				           "differences wrap, and square in int64_t",
+				           lz_lattice_name(all_kinds[k]), L, x, y, z, want, got);
 				int64_t back = lz_lattice_min_dist2(b, x == INT32_MIN ? 0 : -x,
 				                                    y == INT32_MIN ? 0 : -y,
 				                                    z == INT32_MIN ? 0 : -z);
-				ck_assert_msg(back == got, "%s lattice: the displacement (%d, %d, %d) and its "
-				              "reverse give distances² %" PRId64 " and %" PRId64 "; a pair is "
-				              "as far from one end as from the other",
-				              lz_lattice_name(all_kinds[k]), x, y, z, got, back);
+				LZ_REQUIRE(back == got, "%s lattice: the displacement (%d, %d, %d) and its "
+				           "reverse give distances² %" PRId64 " and %" PRId64 "; a pair is "
+				           "as far from one end as from the other",
+				           lz_lattice_name(all_kinds[k]), x, y, z, got, back);
 			}
 		lz_lattice_box_free(b);
 	}
@@ -284,10 +311,10 @@ LZ_TEST(min_image_random_pairs_large_triangular_box)
 		int32_t x2 = (int32_t)gsl_rng_uniform_int(rng, L), y2 = (int32_t)gsl_rng_uniform_int(rng, L);
 		int64_t want = brute_min(LZ_LATTICE_TRIANGULAR, L, x1 - x2, y1 - y2, 0);
 		int64_t got = lz_lattice_min_dist2(b, x1 - x2, y1 - y2, 0);
-		ck_assert_msg(got == want, "triangular lattice, box side %d: sites (%d, %d) and (%d, "
-		              "%d) are at nearest-image distance² %" PRId64 ", got %" PRId64 " — a "
-		              "pair across the long diagonal of the rhombus needs the hexagon "
-		              "correction", L, x1, y1, x2, y2, want, got);
+		LZ_REQUIRE(got == want, "triangular lattice, box side %d: sites (%d, %d) and (%d, "
+		           "%d) are at nearest-image distance² %" PRId64 ", got %" PRId64 " — a "
+		           "pair across the long diagonal of the rhombus needs the hexagon "
+		           "correction", L, x1, y1, x2, y2, want, got);
 	}
 	lz_lattice_box_free(b);
 	gsl_rng_free(rng);

@@ -31,6 +31,23 @@ static uint32_t state_before(uint32_t target)
 	return x;
 }
 
+/* Precondition of the statistical tests: from `seed` lz_lcg_next steps the recurrence
+ * and keeps the new integer as the state (a shifted or frozen stream has the same
+ * statistics, so they could not tell). */
+static void require_generator(uint32_t seed)
+{
+	lz_lcg g;
+	lz_lcg_seed(&g, seed);
+	for (uint32_t x = seed, n = 1; n <= 3; n++) {
+		x = ref_next(x);
+		uint32_t got = lz_lcg_next(&g);
+		ck_assert_msg(got == x && g.x == x, "precondition: draw %u of lz_lcg_next from seed %"
+		              PRIu32 " returned %" PRIu32 " and left the state %" PRIu32 ", expected %"
+		              PRIu32 " for both — fix lz_lcg_next first (lcg_sequence_from_seed_zero "
+		              "says how)", n, seed, got, g.x, x);
+	}
+}
+
 LZ_TEST(lcg_sequence_from_seed_zero)
 {
 	/* Thesis 2.3.3 prints the stream from seed 0 as signed 32-bit integers:
@@ -85,6 +102,7 @@ LZ_TEST(lcg_low_bits_have_short_periods)
 	 * exactly 2^(k+1) (bit 0 alternates), and the low 16 bits together return to
 	 * their start first after 2^16 draws. */
 	enum { N = 1 << 17 };
+	require_generator(12345);
 	uint32_t *x = malloc(N * sizeof *x);
 	lz_lcg g;
 	lz_lcg_seed(&g, 12345);
@@ -151,6 +169,10 @@ LZ_TEST(lcg_uniform_never_returns_one)
 			             "uniform draw in [0, 1) can never be 1 — multiply by 2^-32 in double "
 			             "(dividing by 2^32 - 1, or rounding x to float, reaches 1.0)", top,
 			             k + 1, u);
+		if (g.x != top)
+			ck_abort_msg("a uniform draw from the state before 2^32 - %" PRIu32 " left the "
+			             "state %" PRIu32 ": it advances the generator to the integer it maps",
+			             k + 1, g.x);
 		if (u != 1.0 - ldexp((double)(k + 1), -32))
 			ck_abort_msg("the integer 2^32 - %" PRIu32 " mapped to %.17g, expected exactly "
 			             "1 - %" PRIu32 "·2^-32 = %.17g", k + 1, u, k + 1,
@@ -166,6 +188,7 @@ END_TEST
 static double chi_square_p(uint32_t n, uint32_t seed, long draws, int nbins,
                            int (*bin)(uint32_t v), double *stat)
 {
+	require_generator(seed);
 	long *count = calloc((size_t)nbins, sizeof *count);
 	lz_lcg g;
 	lz_lcg_seed(&g, seed);
@@ -228,7 +251,8 @@ END_TEST
 
 LZ_TEST(lcg_below_uses_high_bits)
 {
-	/* For n = 2^k the answer is the top k bits of the next integer, in one draw. Then
+	/* For n = 2^k the answer is the top k bits of the next integer, in one draw, the
+	 * top integer 2^32 - 1 included (n divides 2^32: nothing is rejected). Then
 	 * successive pairs for n = 4 and 6: the low bits of the LCG have periods 2, 4, …,
 	 * so x % n fills only some of the n² pairs. */
 	for (int k = 0; k < 32; k++) {
@@ -242,6 +266,12 @@ LZ_TEST(lcg_below_uses_high_bits)
 		              "integer %" PRIu32 ", which is %" PRIu32 ", in one draw (q = 2^(32-%d), "
 		              "nothing to reject)", k, seed, got, g.x == x ? "one draw" :
 		              "more than one draw", k, x, want, k);
+		lz_lcg_seed(&g, state_before(UINT32_MAX));
+		got = lz_lcg_below(&g, n);
+		ck_assert_msg(got == n - 1 && g.x == UINT32_MAX, "lz_lcg_below(n = 2^%d) with the next "
+		              "integer 2^32 - 1: returned %" PRIu32 " with the state at %" PRIu32 ", "
+		              "expected n - 1 in one draw — n·q = 2^32 for every power of two, so the "
+		              "top integers are accepted (needs 64 bits)", k, got, g.x);
 	}
 	static const uint32_t ns[] = {4, 6};
 	for (size_t i = 0; i < sizeof ns / sizeof ns[0]; i++) {

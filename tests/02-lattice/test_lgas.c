@@ -1,8 +1,12 @@
 /* test_lgas.c — the lattice gases' collision tables, propagation and collision step,
  * checked by invariants: mass and integer momentum of every table entry and of whole
- * lattices over many steps, particle-hole symmetry, single particles followed by
- * hand, full and empty lattices, bounce-back. */
+ * lattices over many steps, free streaming (the particles' first moment advances by
+ * the momentum), particle-hole symmetry, single particles followed by hand, full and
+ * empty lattices with walls, bounce-back, independent chiralities. The tests of the
+ * collision step use a table written out here, so that they judge lz_lgas_collide
+ * apart from lz_lgas_table. */
 #include <inttypes.h>
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -70,6 +74,31 @@ static void fill_random(lz_lgas *g, double d, gsl_rng *r)
 	}
 }
 
+/* The collision rules of thesis 1.4 written out state by state (not by rotation
+ * symmetry): every state unchanged but the HPP pair {0,2} <-> {1,3}; FHP head-on
+ * pairs turning +60° (chirality 0) or -60° (1), the four-body states with a head-on
+ * pair of holes turning like their holes, and the triples {0,2,4} <-> {1,3,5}. */
+static void table_by_hand(lz_lgas_model model, uint8_t t[LZ_LGAS_TABLE_SIZE])
+{
+	for (unsigned i = 0; i < LZ_LGAS_TABLE_SIZE; i++)
+		t[i] = (uint8_t)(i & 0x3Fu);
+	for (unsigned c = 0; c < 2; c++) {
+		if (model == LZ_LGAS_HPP) {
+			t[c << 6 | 0x5] = 0xA;
+			t[c << 6 | 0xA] = 0x5;
+			continue;
+		}
+		static const unsigned pair[3] = {0x09, 0x12, 0x24}; /* {0,3}, {1,4}, {2,5} */
+		for (int i = 0; i < 3; i++) {
+			unsigned to = pair[(i + (c ? 2 : 1)) % 3];
+			t[c << 6 | pair[i]] = (uint8_t)to;
+			t[c << 6 | (0x3Fu & ~pair[i])] = (uint8_t)(0x3Fu & ~to);
+		}
+		t[c << 6 | 0x15] = 0x2A;
+		t[c << 6 | 0x2A] = 0x15;
+	}
+}
+
 /* ---- the collision tables ---- */
 
 LZ_TEST(table_conserves_mass_and_momentum)
@@ -83,19 +112,19 @@ LZ_TEST(table_conserves_mass_and_momentum)
 		for (unsigned c = 0; c < 2; c++)
 			for (unsigned s = 0; s < (unsigned)nstates; s++) {
 				unsigned out = t[c << 6 | s];
-				ck_assert_msg(out < (unsigned)nstates, "%s table[chirality %u][state %u] = "
-				              "%u uses bits beyond the %d directions", model_name(model), c,
-				              s, out, m ? 6 : 4);
+				LZ_REQUIRE(out < (unsigned)nstates, "%s table[chirality %u][state %u] = "
+				           "%u uses bits beyond the %d directions", model_name(model), c,
+				           s, out, m ? 6 : 4);
 				int m0, x0, y0, m1, x1, y1;
 				site_moments(model, s, &m0, &x0, &y0);
 				site_moments(model, out, &m1, &x1, &y1);
-				ck_assert_msg(m0 == m1, "%s collision of state %u (chirality %u) -> %u: %d "
-				              "particles in, %d out — a collision must conserve mass",
-				              model_name(model), s, c, out, m0, m1);
-				ck_assert_msg(x0 == x1 && y0 == y1, "%s collision of state %u (chirality %u) "
-				              "-> %u: momentum (%d, %d) in sheared lattice units became "
-				              "(%d, %d) — only head-on pairs and symmetric triples may turn",
-				              model_name(model), s, c, out, x0, y0, x1, y1);
+				LZ_REQUIRE(m0 == m1, "%s collision of state %u (chirality %u) -> %u: %d "
+				           "particles in, %d out — a collision must conserve mass",
+				           model_name(model), s, c, out, m0, m1);
+				LZ_REQUIRE(x0 == x1 && y0 == y1, "%s collision of state %u (chirality %u) "
+				           "-> %u: momentum (%d, %d) in sheared lattice units became "
+				           "(%d, %d) — only head-on pairs and symmetric triples may turn",
+				           model_name(model), s, c, out, x0, y0, x1, y1);
 			}
 	}
 }
@@ -123,11 +152,14 @@ LZ_TEST(table_collides_head_on_pairs_and_triples)
 		              "FHP symmetric triples {0,2,4} = 0x15 and {1,3,5} = 0x2A must swap "
 		              "(chirality %u); got 0x%02x and 0x%02x", c, t[c << 6 | 0x15],
 		              t[c << 6 | 0x2A]);
-	int changed = 0;
-	for (unsigned s = 0; s < 64; s++)
-		changed += t[s] != s;
-	ck_assert_msg(changed == 3 + 3 + 2, "FHP changes 8 states per chirality (3 pairs, 3 "
-	              "hole pairs, 2 triples); this table changes %d", changed);
+	for (unsigned c = 0; c < 2; c++) {
+		int changed = 0;
+		for (unsigned s = 0; s < 64; s++)
+			changed += t[c << 6 | s] != s;
+		ck_assert_msg(changed == 3 + 3 + 2, "FHP changes 8 states per chirality (3 pairs, 3 "
+		              "hole pairs, 2 triples); with chirality %u this table changes %d", c,
+		              changed);
+	}
 	lz_lgas_table(LZ_LGAS_HPP, t);
 	for (unsigned c = 0; c < 2; c++)
 		for (unsigned s = 0; s < 16; s++) {
@@ -150,15 +182,15 @@ LZ_TEST(table_is_a_particle_hole_symmetric_permutation)
 			int seen[64] = {0};
 			for (unsigned s = 0; s < nstates; s++) {
 				unsigned out = t[c << 6 | s] & 0x3Fu;
-				ck_assert_msg(out < nstates && !seen[out], "%s table (chirality %u) is not a "
-				              "permutation: state %u is reached twice — a collision rule "
-				              "must be reversible", model_name(model), c, out);
+				LZ_REQUIRE(out < nstates && !seen[out], "%s table (chirality %u) is not a "
+				           "permutation: state %u is reached twice — a collision rule "
+				           "must be reversible", model_name(model), c, out);
 				seen[out] = 1;
 				unsigned hole = t[c << 6 | (full & ~s)];
-				ck_assert_msg(hole == (full & ~out), "%s particle-hole symmetry (chirality "
-				              "%u): collide(~0x%02x) = 0x%02x, but ~collide(0x%02x) = 0x%02x "
-				              "— holes must collide like particles", model_name(model), c,
-				              s, hole, s, full & ~out);
+				LZ_REQUIRE(hole == (full & ~out), "%s particle-hole symmetry (chirality "
+				           "%u): collide(~0x%02x) = 0x%02x, but ~collide(0x%02x) = 0x%02x "
+				           "— holes must collide like particles", model_name(model), c,
+				           s, hole, s, full & ~out);
 			}
 		}
 	}
@@ -176,22 +208,25 @@ LZ_TEST(propagate_moves_one_particle_one_site)
 		lz_lgas *g = lz_lgas_alloc(model, 8);
 		ck_assert(g);
 		for (int k = 0; k < n; k++) {
-			/* From the middle and from every corner: the moves off an edge wrap. */
+			/* From the middle and from every corner: the moves off an edge wrap. An
+			 * empty wall site at (5, 2), off every path, must keep its bit. */
 			static const int32_t starts[][2] = {{3, 4}, {0, 0}, {7, 7}, {0, 7}, {7, 0}};
 			for (int st = 0; st < 5; st++) {
 				memset(g->site, 0, 64);
+				g->site[2 * 8 + 5] = LZ_LGAS_WALL;
 				int32_t x = starts[st][0], y = starts[st][1];
 				g->site[y * 8 + x] = (uint8_t)(1u << k);
 				lz_lgas_propagate(g);
 				int32_t wx = (x + e[k].x + 8) % 8, wy = (y + e[k].y + 8) % 8;
 				for (int32_t i = 0; i < 64; i++) {
-					unsigned want = i == wy * 8 + wx ? 1u << k : 0u;
-					ck_assert_msg(g->site[i] == want, "%s, L = 8: a particle at (%d, %d) "
-					              "moving in direction %d (%+d, %+d) must land on (%d, %d)"
-					              "%s; site (%d, %d) holds 0x%02x, expected 0x%02x",
-					              model_name(model), x, y, k, e[k].x, e[k].y, wx, wy,
-					              st ? " (wrapped periodically)" : "", i % 8, i / 8,
-					              g->site[i], want);
+					unsigned want = (i == wy * 8 + wx ? 1u << k : 0u) |
+					                (i == 2 * 8 + 5 ? LZ_LGAS_WALL : 0u);
+					LZ_REQUIRE(g->site[i] == want, "%s, L = 8: a particle at (%d, %d) "
+					           "moving in direction %d (%+d, %+d) must land on (%d, %d)"
+					           "%s; site (%d, %d) holds 0x%02x, expected 0x%02x",
+					           model_name(model), x, y, k, e[k].x, e[k].y, wx, wy,
+					           st ? " (wrapped periodically)" : "", i % 8, i / 8,
+					           g->site[i], want);
 				}
 			}
 		}
@@ -218,10 +253,10 @@ LZ_TEST(propagate_returns_after_L_steps_and_keeps_walls)
 		for (int s = 1; s < 16; s++)
 			lz_lgas_propagate(g);
 		for (int i = 0; i < 256; i++)
-			ck_assert_msg(g->site[i] == start[i], "%s, L = 16: after 16 free-flight steps "
-			              "site (%d, %d) holds 0x%02x but started with 0x%02x — every "
-			              "particle should be back (periodic wrap)", model_name(g->model),
-			              i % 16, i / 16, g->site[i], start[i]);
+			LZ_REQUIRE(g->site[i] == start[i], "%s, L = 16: after 16 free-flight steps "
+			           "site (%d, %d) holds 0x%02x but started with 0x%02x — every "
+			           "particle should be back (periodic wrap)", model_name(g->model),
+			           i % 16, i / 16, g->site[i], start[i]);
 		lz_lgas_free(g);
 	}
 	gsl_rng_free(r);
@@ -230,6 +265,47 @@ END_TEST
 
 /* ---- whole steps ---- */
 
+/* The particles' first moment: Σ over every particle of the (sheared) coordinates of
+ * its site. A collision moves no particle; streaming moves each by its direction
+ * vector, so one step advances the moment by the momentum, modulo L (a particle that
+ * wraps jumps back by L). */
+static void first_moment(const lz_lgas *g, int64_t *sx, int64_t *sy)
+{
+	unsigned bits = (1u << g->nbits) - 1u;
+	*sx = *sy = 0;
+	for (uint32_t i = 0; i < (uint32_t)g->side * (uint32_t)g->side; i++) {
+		int64_t n = __builtin_popcount(g->site[i] & bits);
+		*sx += n * (int64_t)(i & (uint32_t)g->mask);
+		*sy += n * (int64_t)(i >> g->shift);
+	}
+}
+
+static int64_t mod_side(int64_t v, int64_t L) { return (v % L + L) % L; }
+
+/* One collide-and-stream step, checked: mass and momentum conserved exactly, the
+ * first moment moved by the momentum (p0x, p0y). */
+static void checked_step(lz_lgas *g, const uint8_t *t, gsl_rng *r, int step, int64_t m0,
+                         int64_t p0x, int64_t p0y)
+{
+	int64_t ax, ay, bx, by, m1, x1, y1;
+	first_moment(g, &ax, &ay);
+	lz_lgas_collide(g, t, r);
+	lz_lgas_propagate(g);
+	totals(g, &m1, &x1, &y1);
+	ck_assert_msg(m1 == m0 && x1 == p0x && y1 == p0y, "%s, L = %d, d = 0.35: after %d steps "
+	              "mass %" PRId64 " -> %" PRId64 ", momentum (%" PRId64 ", %" PRId64 ") -> (%"
+	              PRId64 ", %" PRId64 ") in integer units — both must be conserved exactly",
+	              model_name(g->model), g->side, step, m0, m1, p0x, p0y, x1, y1);
+	first_moment(g, &bx, &by);
+	ck_assert_msg(mod_side(bx - ax - p0x, g->side) == 0 && mod_side(by - ay - p0y, g->side) == 0,
+	              "%s, step %d: the particles' first moment Σ(x, y) moved by (%" PRId64 ", %"
+	              PRId64 "), but streaming moves every particle one site along its own "
+	              "direction, so it must move by the momentum (%" PRId64 ", %" PRId64 ") modulo "
+	              "L = %d — are particles pulled from r - e_k (not r + e_k), and is the new "
+	              "lattice swapped into g->site?", model_name(g->model), step, bx - ax, by - ay,
+	              p0x, p0y, g->side);
+}
+
 LZ_TEST(random_gas_conserves_mass_and_momentum_exactly)
 {
 	gsl_rng *r = rng_new(2024);
@@ -237,27 +313,27 @@ LZ_TEST(random_gas_conserves_mass_and_momentum_exactly)
 		lz_lgas_model model = m ? LZ_LGAS_FHP : LZ_LGAS_HPP;
 		lz_lgas *g = lz_lgas_alloc(model, 32);
 		uint8_t t[LZ_LGAS_TABLE_SIZE];
-		lz_lgas_table(model, t);
+		table_by_hand(model, t);
 		fill_random(g, 0.35, r);
 		/* A net flow, so momentum conservation is not 0 = 0. */
 		for (int i = 0; i < 1024; i += 3)
 			g->site[i] |= 1u;
-		int64_t m0, x0, y0, m1, x1, y1;
+		int64_t m0, x0, y0;
 		totals(g, &m0, &x0, &y0);
+		/* Streaming backwards would move the moment by -p: seen only if 2p is not a
+		 * multiple of L. */
+		ck_assert_msg(mod_side(2 * x0, 32) != 0, "test set-up: the net flow %" PRId64
+		              " must not be a multiple of L/2", x0);
 		int changed = 0;
 		for (int step = 1; step <= 10000; step++) {
 			uint8_t before = g->site[100];
+			if (step % 500 == 0 || step == 1) {
+				checked_step(g, t, r, step, m0, x0, y0);
+				continue;
+			}
 			lz_lgas_collide(g, t, r);
 			changed |= g->site[100] != before;
 			lz_lgas_propagate(g);
-			if (step % 500 == 0 || step == 1) {
-				totals(g, &m1, &x1, &y1);
-				ck_assert_msg(m1 == m0 && x1 == x0 && y1 == y0, "%s, L = 32, d = 0.35: after "
-				              "%d steps mass %" PRId64 " -> %" PRId64 ", momentum (%" PRId64
-				              ", %" PRId64 ") -> (%" PRId64 ", %" PRId64 ") in integer units "
-				              "— both must be conserved exactly", model_name(model), step,
-				              m0, m1, x0, y0, x1, y1);
-			}
 		}
 		ck_assert_msg(changed, "%s: the collision never changed site 100 in 10^4 steps",
 		              model_name(model));
@@ -269,11 +345,12 @@ END_TEST
 
 LZ_TEST(collisions_happen_with_both_chiralities)
 {
-	/* Every site a head-on pair {0,3}: about half must turn each way. */
+	/* Every site a head-on pair {0,3}: about half must turn each way, each site on its
+	 * own coin. */
 	gsl_rng *r = rng_new(99);
 	lz_lgas *g = lz_lgas_alloc(LZ_LGAS_FHP, 64);
 	uint8_t t[LZ_LGAS_TABLE_SIZE];
-	lz_lgas_table(LZ_LGAS_FHP, t);
+	table_by_hand(LZ_LGAS_FHP, t);
 	memset(g->site, 0x09, 4096);
 	lz_lgas_collide(g, t, r);
 	int plus = 0, minus = 0;
@@ -286,6 +363,15 @@ LZ_TEST(collisions_happen_with_both_chiralities)
 	ck_assert_msg(plus > 1800 && minus > 1800, "FHP: 4096 head-on pairs turned +60° %d "
 	              "times and -60° %d times; each chirality should come up about half the "
 	              "time, independently per site", plus, minus);
+	/* Neighbours in storage order agree half the time if their coins are independent:
+	 * 4095 pairs, 2047.5 ± 32; 5 standard deviations is a false alarm once in 10^6. */
+	int agree = 0;
+	for (int i = 0; i + 1 < 4096; i++)
+		agree += g->site[i] == g->site[i + 1];
+	ck_assert_msg(fabs(agree - 2047.5) < 5 * 32, "FHP: consecutive sites turned the same way "
+	              "%d times out of 4095, expected 2048 ± 32 for independent chiralities — "
+	              "each site needs a fresh bit (shift the random word after using a bit)",
+	              agree);
 	lz_lgas_free(g);
 	gsl_rng_free(r);
 }
@@ -293,23 +379,32 @@ END_TEST
 
 LZ_TEST(all_holes_and_all_particles_stay)
 {
+	/* Walls too: a full wall site bounced back is still full, and an empty one empty,
+	 * so walls change nothing here, and keep their bit. */
 	gsl_rng *r = rng_new(3);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas_model model = m ? LZ_LGAS_FHP : LZ_LGAS_HPP;
 		unsigned full = m ? 0x3F : 0x0F;
 		uint8_t t[LZ_LGAS_TABLE_SIZE];
-		lz_lgas_table(model, t);
+		table_by_hand(model, t);
 		for (int f = 0; f < 2; f++) {
 			lz_lgas *g = lz_lgas_alloc(model, 16);
 			memset(g->site, f ? (int)full : 0, 256);
+			for (int y = 4; y < 12; y++)
+				lz_lgas_set_wall(g, 5, y);
 			for (int step = 0; step < 50; step++) {
 				lz_lgas_collide(g, t, r);
 				lz_lgas_propagate(g);
 			}
-			for (int i = 0; i < 256; i++)
-				ck_assert_msg(g->site[i] == (f ? full : 0u), "%s: a lattice of all %s must "
-				              "stay so; after 50 steps site %d holds 0x%02x",
-				              model_name(model), f ? "particles" : "holes", i, g->site[i]);
+			for (int i = 0; i < 256; i++) {
+				unsigned wall = i % 16 == 5 && i / 16 >= 4 && i / 16 < 12 ? LZ_LGAS_WALL : 0u;
+				LZ_REQUIRE(g->site[i] == ((f ? full : 0u) | wall), "%s: a lattice of all %s "
+				           "with a plate of walls must stay so; after 50 steps site (%d, %d)%s "
+				           "holds 0x%02x, expected 0x%02x — a wall site keeps its bit 0x80 "
+				           "through collision and propagation", model_name(model),
+				           f ? "particles" : "holes", i % 16, i / 16, wall ? " (a wall)" : "",
+				           g->site[i], (f ? full : 0u) | wall);
+			}
 			lz_lgas_free(g);
 		}
 	}
@@ -325,7 +420,7 @@ LZ_TEST(walls_bounce_particles_back)
 		int n;
 		const lz_site *e = dirs_of(model, &n);
 		uint8_t t[LZ_LGAS_TABLE_SIZE];
-		lz_lgas_table(model, t);
+		table_by_hand(model, t);
 		lz_lgas *g = lz_lgas_alloc(model, 8);
 		/* Every state at a wall site is reversed, for both chiralities. */
 		for (unsigned s = 0; s < (1u << n); s++) {

@@ -12,6 +12,7 @@
 #include "lztest.h"
 #include "lz/profile.h"
 #include "lz/walk.h"
+#include "walk_check.h"
 
 static lz_profile *make(lz_lattice_kind kind, int64_t L, int32_t lo, int32_t hi, size_t n)
 {
@@ -44,7 +45,8 @@ LZ_TEST(profile_hand_made_configurations)
 	              (unsigned long long)p->count[0], (unsigned long long)p->count[1],
 	              (unsigned long long)p->count[2], (unsigned long long)p->count[3],
 	              (unsigned long long)p->nsamples);
-	double rho[4];
+	/* NaN in: every row must be written. */
+	double rho[4] = {NAN, NAN, NAN, NAN};
 	ck_assert_int_eq(lz_profile_result(p, rho), LZ_OK);
 	double n = integral(LZ_LATTICE_TRIANGULAR, 8, rho, 4);
 	ck_assert_msg(fabs(n - 3) < 1e-12, "the profile integrates to %.15g particles across the "
@@ -65,7 +67,7 @@ LZ_TEST(profile_hand_made_configurations)
 		full[3 * i + 2] = 1;
 	}
 	ck_assert_int_eq(lz_profile_add_config(p, full), LZ_OK);
-	double r3[4];
+	double r3[4] = {NAN, NAN, NAN, NAN};
 	ck_assert_int_eq(lz_profile_result(p, r3), LZ_OK);
 	ck_assert_msg(r3[1] == 1 && r3[0] == 0 && r3[2] == 0 && r3[3] == 0, "a full plane of "
 	              "the cubic lattice has density 1, got %g (rows 0..3: %g %g %g %g)", r3[1],
@@ -93,27 +95,49 @@ LZ_TEST(profile_rejects_particles_outside_and_empty)
 	int32_t edge[] = {0, 3, 15, 12};
 	ck_assert_int_eq(lz_profile_add_config(p, edge), LZ_OK);
 	ck_assert(p->count[0] == 1 && p->count[9] == 1 && p->nsamples == 1);
+	/* Added twice, the first good configuration puts one centre per sample in each
+	 * edge row of 16 unit sites: ρ = 1/16 there, 0 in the rows between. */
+	ck_assert_int_eq(lz_profile_add_config(p, edge), LZ_OK);
+	for (int c = 0; c < 10; c++)
+		rho[c] = NAN;
+	ck_assert_int_eq(lz_profile_result(p, rho), LZ_OK);
+	for (int c = 0; c < 10; c++) {
+		double want = c == 0 || c == 9 ? 1.0 / 16.0 : 0.0;
+		ck_assert_msg(fabs(rho[c] - want) < 1e-15, "square L = 16, rows 3 .. 12, 2 samples with "
+		              "one centre in row 3 and one in row 12: ρ(%d) = %g, expected %g — ρ = "
+		              "count / (samples · row volume), every row written", c + 3, rho[c], want);
+	}
 	lz_profile_free(p);
 }
 END_TEST
 
-/* Sampled hard disks in a slit (this uses the walkers too). */
+/* Sampled hard disks in a slit. The walkers' box is checked and every sweep replayed
+ * against the rule (walk_check.c), so that the profile is judged on a right ensemble. */
 static void slit_profile(size_t n, int sweeps, double *rho, int *rows, lz_walk **out)
 {
 	lz_walk *w = lz_walk_alloc(LZ_LATTICE_SQUARE, 64, 2, n, LZ_WALK_RANDOM);
 	ck_assert(w && lz_walk_set_slit(w, 24) == LZ_OK);
+	wc_require_box(w);
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 	gsl_rng_set(rng, 11);
 	ck_assert_msg(lz_walk_place(w, rng, 0) == LZ_OK, "%s", lz_error_message());
 	lz_profile *p = make(LZ_LATTICE_SQUARE, 64, w->lo, w->hi, n);
+	wc_run *run = wc_run_new(w);
 	for (int s = 0; s < sweeps; s++) {
-		lz_walk_sweep(w, rng);
-		if (s >= 1000 && s % 5 == 0)
-			ck_assert_int_eq(lz_profile_add_config(p, w->r), LZ_OK);
+		wc_sweep(run, rng);
+		if (s >= 1000 && s % 5 == 0) {
+			int status = lz_profile_add_config(p, w->r);
+			LZ_REQUIRE(status == LZ_OK, "sweep %d: lz_profile_add_config refused a "
+			           "configuration whose every centre is in rows %d .. %d: %s", s, w->lo,
+			           w->hi, lz_error_message());
+		}
 	}
-	ck_assert_int_eq(lz_profile_result(p, rho), LZ_OK);
 	*rows = w->hi - w->lo + 1;
+	for (int c = 0; c < *rows; c++)
+		rho[c] = NAN;
+	ck_assert_int_eq(lz_profile_result(p, rho), LZ_OK);
 	*out = w;
+	wc_run_free(run);
 	lz_profile_free(p);
 	gsl_rng_free(rng);
 }
