@@ -206,6 +206,50 @@ static void walk_both(lz_field *f, lz_field *g, unsigned long seed)
 	gsl_rng_free(b);
 }
 
+/* lz_well_alloc paints the wells of the particles already in the field: every site
+ * counts the centres within rw (strict, minimum image), checked by brute force on a
+ * square lattice with pairs inside, on and beyond the well's edge and across the box
+ * edge; the energy is then -ε times the pairs with d < rw. */
+LZ_TEST(well_alloc_paints_the_particles_already_there)
+{
+	static const int32_t at[][2] = {{10, 10}, {16, 10}, {10, 15}, {40, 40}, {47, 40},
+	                                {62, 5}, {3, 5}, {30, 62}, {30, 3}};
+	const size_t n = sizeof at / sizeof at[0];
+	const int32_t L = 64;
+	lz_field *f = lz_field_alloc(LZ_LATTICE_SQUARE, L, 2);
+	ck_assert_msg(f, "%s", lz_error_message());
+	for (size_t i = 0; i < n; i++)
+		ck_assert_msg(lz_field_place(f, (lz_site){at[i][0], at[i][1], 0}) == LZ_OK,
+		              "placing (%d, %d): %s", at[i][0], at[i][1], lz_error_message());
+	lz_well *w = lz_well_alloc(f, 1.5, 1, 1);  /* rw = 6 */
+	ck_assert_msg(w, "%s", lz_error_message());
+	size_t pairs = 0;
+	for (int32_t x = 0; x < L; x++)
+		for (int32_t y = 0; y < L; y++) {
+			int want = 0;
+			for (size_t i = 0; i < n; i++) {
+				int32_t dx = abs(x - at[i][0]), dy = abs(y - at[i][1]);
+				dx = dx > L / 2 ? L - dx : dx;
+				dy = dy > L / 2 ? L - dy : dy;
+				want += dx * dx + dy * dy < 36;
+			}
+			int got = w->cell[lz_field_index(f, x, y, 0)];
+			LZ_REQUIRE(got == want, "site (%d, %d) lies in %d wells of radius 6, the well "
+			           "field says %d", x, y, want, got);
+		}
+	for (size_t i = 0; i < n; i++)
+		pairs += w->cell[lz_field_index(f, at[i][0], at[i][1], 0)] - 1;
+	/* Inside: (10,10)-(10,15) at 5, and across the edge (62,5)-(3,5) and
+	 * (30,62)-(30,3) at 5; (10,10)-(16,10) at exactly 6 and (40,40)-(47,40) are out. */
+	ck_assert_msg(pairs == 2 * 3, "the centres see %zu partners in their wells, expected "
+	              "6 (3 pairs)", pairs);
+	ck_assert_msg(lz_well_energy(w, f) == -(double)pairs / 2, "E = %g for %zu pairs",
+	              lz_well_energy(w, f), pairs / 2);
+	lz_well_free(w);
+	lz_field_free(f);
+}
+END_TEST
+
 LZ_TEST(field_in_a_larger_lattice_is_the_same_simulation)
 {
 	static const struct { lz_lattice_kind kind; int L; double R; } pc[] = {
