@@ -1,28 +1,7 @@
 /* test_lozenge.c — truncation orders of known stencils. Every expected value below
  * was derived by hand from the Taylor series (the derivation is in the comment), so
  * a test never trusts the code it grades. */
-#include "lztest.h"
-#include "lz/lozenge.h"
-
-#define T(c, h, n, d) {LZ_COL_##c, (h), {(n), (d)}}
-
-/* Checks one formula against a hand-derived order, leading coefficient and
- * derivative; `what` names it in the message. */
-static void expect_order(const char *what, lz_formula f, int order, long long num,
-                         long long den, int deriv)
-{
-	int p = -99, d = -99;
-	lz_ratio c = {0, 0};
-	int status = lz_formula_order(&f, 12, &p, &c, &d);
-	char got[64];
-	ck_assert_msg(status == LZ_OK, "%s: lz_formula_order returned status %d (%s); the "
-	              "formula is valid and has order %d", what, status, lz_error_message(), order);
-	ck_assert_msg(p == order && c.num == num && c.den == den && d == deriv,
-	              "%s: got error %s dt^%d x^(%d), expected %lld/%lld dt^%d x^(%d) — "
-	              "expand each sample q(t + h dt/2) in powers of dt (note the /2 per half "
-	              "step and the dt^(k_i - k_T) of each weight) and subtract the target",
-	              what, lz_ratio_str(c, got, sizeof got), p, d, num, den, order, deriv);
-}
+#include "lozenge_expect.h"
 
 LZ_TEST(lozenge_verlet_order)
 {
@@ -118,6 +97,17 @@ LZ_TEST(lozenge_exact_formula_is_edom)
 	              c.den == 24 && d == 4, "the 4-term Taylor formula examined up to derivative "
 	              "4: expected -1/24 dt^4 x^(4), got order %d, %lld/%lld, x^(%d)", p, c.num,
 	              c.den, d);
+	/* The same for the velocity: v + dt a + dt²/2 b - v(t+dt) = -dt³/6 x⁗, order 3
+	 * (a target in column v), invisible up to x‴. */
+	lz_formula taylor_v = {LZ_COL_V, 2, 3, {T(V, 0, 1, 1), T(A, 0, 1, 1), T(B, 0, 1, 2)}};
+	status = lz_formula_order(&taylor_v, 3, &p, &c, &d);
+	ck_assert_msg(status == LZ_EDOM, "the 3-term Taylor formula for v examined up to "
+	              "derivative 3 has every coefficient zero: expected LZ_EDOM (%d), got %d",
+	              LZ_EDOM, status);
+	ck_assert_msg(lz_formula_order(&taylor_v, 4, &p, &c, &d) == LZ_OK && p == 3 &&
+	              c.num == -1 && c.den == 6 && d == 4, "the 3-term Taylor formula for v "
+	              "examined up to derivative 4: expected -1/6 dt^3 x^(4), got order %d, "
+	              "%lld/%lld, x^(%d)", p, c.num, c.den, d);
 	/* An identity at a half step is exact to all orders, also at the largest max_deriv
 	 * (the coefficients (1/2)^D / D! must stay exact up to D = 20). */
 	lz_formula same = {LZ_COL_V, 3, 1, {T(V, 3, 1, 1)}};
@@ -131,7 +121,9 @@ LZ_TEST(lozenge_malformed_is_einval)
 {
 	int p, d;
 	lz_ratio c;
-	lz_formula good = {LZ_COL_R, 2, 2, {T(R, 0, 1, 1), T(V, 0, 1, 1)}};
+	/* Euler's velocity v(t+dt) = v + dt a: -dt²/2 x‴ (a target in column v, so the
+	 * order is the derivative minus one). */
+	lz_formula good = {LZ_COL_V, 2, 2, {T(V, 0, 1, 1), T(A, 0, 1, 1)}};
 	lz_formula bad[6] = {good, good, good, good, good, good};
 	bad[0].nterms = 0;
 	bad[1].nterms = LZ_TERMS_MAX + 1;
@@ -147,7 +139,34 @@ LZ_TEST(lozenge_malformed_is_einval)
 		ck_assert_msg(status == LZ_EINVAL, "a formula with %s must be rejected with "
 		              "LZ_EINVAL (%d), got %d", what[i], LZ_EINVAL, status);
 	}
-	ck_assert_msg(lz_formula_order(&good, 10, &p, &c, &d) == LZ_OK,
-	              "the valid Euler formula was rejected: %s", lz_error_message());
+	/* max_deriv is allowed in 0..20: one past either end is refused. */
+	static const int bad_deriv[2] = {-1, 21};
+	for (int i = 0; i < 2; i++) {
+		int status = lz_formula_order(&good, bad_deriv[i], &p, &c, &d);
+		ck_assert_msg(status == LZ_EINVAL, "max_deriv = %d is outside 0..20 and must be "
+		              "rejected with LZ_EINVAL (%d), got %d", bad_deriv[i], LZ_EINVAL, status);
+	}
+	/* The refusals must not cost the valid formula its answer, examined exactly up to
+	 * the derivative of its error. */
+	p = d = -99;
+	c = (lz_ratio){0, 0};
+	ck_assert_msg(lz_formula_order(&good, 3, &p, &c, &d) == LZ_OK,
+	              "the valid Euler formula was rejected, examined up to x^(3) where its error "
+	              "is: %s", lz_error_message());
+	ck_assert_msg(p == 2 && c.num == -1 && c.den == 2 && d == 3, "the valid Euler velocity "
+	              "formula v(+dt) = v + dt a: expected -1/2 dt^2 x^(3), got %lld/%lld dt^%d "
+	              "x^(%d)", c.num, c.den, p, d);
+}
+END_TEST
+
+LZ_TEST(lozenge_eight_terms_accepted)
+{
+	/* LZ_TERMS_MAX = 8 terms is allowed: the 5-point second derivative of
+	 * lozenge_five_point_stencil (error -dt⁴/90 x^(6)) with its three inner terms
+	 * each split into two halves. */
+	lz_formula a8 = {LZ_COL_A, 0, LZ_TERMS_MAX,
+	                 {T(R, 4, -1, 12), T(R, 2, 8, 12), T(R, 2, 8, 12), T(R, 0, -15, 12),
+	                  T(R, 0, -15, 12), T(R, -2, 8, 12), T(R, -2, 8, 12), T(R, -4, -1, 12)}};
+	expect_order("the 5-point a(0) in 8 = LZ_TERMS_MAX terms", a8, 4, -1, 90, 6);
 }
 END_TEST
