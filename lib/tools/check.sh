@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # make check — the test command: every suite against the reference must pass 100 %,
 # the committed assignments must be current, the stub audit and the grader
-# fixtures must pass, and the handout must work along the student's path (make
-# test, make submit, make grade). Usage: check.sh BUILD "STAGES"
+# fixtures must pass, a realistic bug in every graded function must fail the tests
+# that call it (one mutant each; `make mutants` runs them all), and the handout must
+# work along the student's path (make test, make submit, make grade). Usage: check.sh BUILD "STAGES"
 set -uo pipefail
 build=$1
 stages=$2
@@ -61,6 +62,7 @@ done
 step "assignments/ is generated from solutions/" bash lib/tools/mkassign.sh solutions assignments --check
 step "stub audit" bash tests/grade/audit.sh "$build" "$stages"
 step "grader fixtures" bash tests/grade/fixtures.sh "$build"
+step "mutants, one per graded function" bash tests/grade/mutants.sh "$build" --sample
 step "handout and the student's path" bash lib/tools/handout.sh "$build"
 
 echo

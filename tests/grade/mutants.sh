@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # mutants.sh — do the graded tests catch the mistakes students make? (`make mutants`)
 #
-#   mutants.sh BUILD [STAGE ...] [--only NAME ...]
+#   mutants.sh BUILD [STAGE ...] [--only NAME ...] [--sample]
 #
 # A mutant is a realistic student bug, kept as a patch against the reference solution
 # of its stage: tests/NN-name/mutants/NAME.patch. The text before the patch says what
@@ -25,19 +25,24 @@
 # longer applies or compiles (the reference changed under it), or one that kills
 # nothing.
 #
+# --sample takes one mutant per function (the first by name): what `make check` runs;
+# `make mutants` runs them all.
+#
 # Each stage runs in BUILD/mutants/NN-name/, a scratch copy of the sources, with the
 # grader's file limit, building with JOBS parallel jobs (default: the cores). Prints
 # `mutants: N passed, M failed`; exits non-zero on a defect.
 # shellcheck source=lib/tools/common.sh
 . "$(dirname "${BASH_SOURCE[0]}")/../../lib/tools/common.sh"
 cd "$ROOT"
-need_args $# 1 any "mutants.sh BUILD [STAGE ...] [--only NAME ...]"
+need_args $# 1 any "mutants.sh BUILD [STAGE ...] [--only NAME ...] [--sample]"
 BUILD=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 shift
 WANT_STAGES=()
 ONLY=()
+SAMPLE=0
 while [ $# -gt 0 ]; do
 	case $1 in
+	--sample) SAMPLE=1; shift ;;
 	--only) [ $# -ge 2 ] || need_args 0 1 1 "mutants.sh BUILD [STAGE ...] [--only NAME ...]"
 		ONLY+=("$2"); shift 2 ;;
 	*) WANT_STAGES+=("$1"); shift ;;
@@ -212,9 +217,16 @@ for st in $(stages); do
 	tree_make "build/tests/$st" >"$tmp/build.log" 2>&1 ||
 		{ defect "$st: the reference does not build"; continue; }
 	rm -f "$tmp"/lean-*
+	sampled=" "
 	for p in tests/"$st"/mutants/*.patch; do
 		[ -e "$p" ] || continue
-		wanted "$(basename "$p" .patch)" && mutant "$st" "$p"
+		wanted "$(basename "$p" .patch)" || continue
+		if [ "$SAMPLE" = 1 ]; then
+			fn=$(field "$p" Function | head -n 1)
+			[[ $sampled == *" $fn "* ]] && continue
+			sampled="$sampled$fn "
+		fi
+		mutant "$st" "$p"
 	done
 done
 echo "mutants: $((SECONDS - t0)) s"
