@@ -1,9 +1,13 @@
-# lozenge — one entry point for everything (DESIGN §4). `make help` lists the targets.
+# lozenge — one entry point for everything. `make help` lists the targets; lib/README.md
+# describes the layout.
 #
-# The library is lib/src/*.c plus, for every stage NN, the graded files of the chosen
+# The library liblz.a is the core (lib/core/*.c), each stage's library half
+# (lib/NN-name/*.c) and, for every stage, the graded files of the chosen
 # implementation: IMPL=solutions|assignments sets all stages, IMPL_NN=... one stage.
 # Objects of the two implementations live apart, and build/impl.stamp records the
-# current choice, so switching IMPL relinks exactly what changed.
+# current choice, so switching IMPL relinks exactly what changed. The `lz` program
+# (lib/app/) is linked on top of it, into build/bin/lz and the library's own test
+# suite; the student tests and the lesson drivers link the library alone.
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := all
@@ -60,7 +64,7 @@ $(shell mkdir -p $(BUILD) && { [ "$$(cat $(BUILD)/impl.stamp 2>/dev/null)" = "$(
 $(shell { [ "$$(cat $(BUILD)/flags.stamp 2>/dev/null)" = '$(FLAGS_SIG)' ] || echo '$(FLAGS_SIG)' > $(BUILD)/flags.stamp; })
 
 # ---- the library ---------------------------------------------------------
-LIB_OBJS := $(patsubst lib/src/%.c,$(BUILD)/obj/lib/%.o,$(wildcard lib/src/*.c))
+LIB_OBJS := $(patsubst lib/%.c,$(BUILD)/obj/lib/%.o,$(wildcard lib/core/*.c lib/[0-9][0-9]-*/*.c))
 stage_objs = $(patsubst $(call impl_of,$(1))/$(1)/%.c,$(BUILD)/obj/$(call impl_of,$(1))/$(1)-%.o,\
              $(wildcard $(call impl_of,$(1))/$(1)/*.c))
 STAGE_OBJS := $(foreach s,$(STAGES),$(call stage_objs,$(s)))
@@ -69,10 +73,8 @@ LIB := $(BUILD)/lib/liblz.a
 COMPILE = @mkdir -p $(@D); echo "  CC      $<"; $(CC) $(CFLAGS) $(PKG_CFLAGS) $(EXTRA_INC) -MMD -MP -c $< -o $@
 LINK = @mkdir -p $(@D); echo "  LD      $@"; $(CC) $(LDFLAGS) -o $@ $(filter %.o %.a,$^) $(EXTRA_LIBS) $(GSL_LIBS) $(LDLIBS)
 
-$(BUILD)/obj/lib/%.o: lib/src/%.c $(BUILD)/flags.stamp
+$(BUILD)/obj/lib/%.o: lib/%.c $(BUILD)/flags.stamp
 	$(COMPILE)
-# `lz list` finds the scenes of this tree from anywhere ($LZ_SCENES overrides).
-$(BUILD)/obj/lib/cli.o: EXTRA_INC = -DLZ_SCENE_DIR='"$(abspath datasets/scenes)"'
 # Stage objects are named <stage>-<file>.o so that archive members never collide.
 define stage_rule
 $(BUILD)/obj/$(2)/$(1)-%.o: $(2)/$(1)/%.c $(BUILD)/flags.stamp
@@ -83,11 +85,14 @@ $(foreach s,$(STAGES),$(foreach i,solutions assignments,$(eval $(call stage_rule
 $(LIB): $(LIB_OBJS) $(STAGE_OBJS) $(BUILD)/impl.stamp
 	@mkdir -p $(@D); rm -f $@; echo "  AR      $@"; ar rcs $@ $(filter %.o,$^)
 
-# ---- the CLI -------------------------------------------------------------
+# ---- the lz program: CLI, scene parser, the engines' scene bindings -------
 LZ := $(BUILD)/bin/lz
-$(BUILD)/obj/cli/%.o: lib/cli/%.c $(BUILD)/flags.stamp
+APP_OBJS := $(patsubst lib/app/%.c,$(BUILD)/obj/app/%.o,$(filter-out lib/app/lz.c,$(wildcard lib/app/*.c)))
+$(BUILD)/obj/app/%.o: lib/app/%.c $(BUILD)/flags.stamp
 	$(COMPILE)
-$(LZ): $(BUILD)/obj/cli/lz.o $(LIB)
+# `lz list` finds the scenes of this tree from anywhere ($LZ_SCENES overrides).
+$(BUILD)/obj/app/cli.o: EXTRA_INC = -DLZ_SCENE_DIR='"$(abspath datasets/scenes)"'
+$(LZ): $(BUILD)/obj/app/lz.o $(APP_OBJS) $(LIB)
 	$(LINK)
 
 # ---- tests ---------------------------------------------------------------
@@ -95,11 +100,13 @@ RUNNER_OBJ := $(BUILD)/obj/grade/runner.o
 $(BUILD)/obj/grade/%.o: tests/grade/%.c $(BUILD)/flags.stamp
 	$(COMPILE)
 $(BUILD)/obj/tests/%.o: EXTRA_INC = -Itests/grade
+$(BUILD)/obj/tests/lib/%.o: EXTRA_INC = -Itests/grade -Ilib/app
 $(BUILD)/obj/tests/%.o: tests/%.c $(BUILD)/flags.stamp
 	$(COMPILE)
 test_objs = $(patsubst tests/%.c,$(BUILD)/obj/tests/%.o,$(wildcard tests/$(1)/*.c tests/$(1)/hidden/*.c))
+# The library's own suite also tests the lz program; the stage suites link the library alone.
 define test_rule
-$(BUILD)/tests/$(1): $(call test_objs,$(1)) $(RUNNER_OBJ) $(LIB)
+$(BUILD)/tests/$(1): $(call test_objs,$(1)) $(RUNNER_OBJ) $(if $(filter lib,$(1)),$(APP_OBJS)) $(LIB)
 	$$(LINK)
 endef
 TEST_SUITES := lib $(STAGES)

@@ -6,9 +6,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "lz/method.h"
+#include "method.h"
 #include "lz/output.h"
-#include "lz/scene.h"
+#include "scene.h"
 #include "lztest.h"
 #include "support.h"
 

@@ -9,10 +9,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "lz/cli.h"
-#include "lz/method.h"
+#include "cli.h"
+#include "method.h"
 #include "lz/output.h"
-#include "lz/scene.h"
+#include "scene.h"
 #include "lztest.h"
 #include "support.h"
 

@@ -1,5 +1,5 @@
 /* test_method_edmd.c — what is measured on an event-driven run (lz/edmd_obs.h,
- * lib/src/edmd_obs.c) and the `edmd` method (lib/src/method_edmd.c): the blocks, their
+ * lib/05-edmd/edmd_obs.c) and the `edmd` method (lib/app/method_edmd.c): the blocks, their
  * error bars and guards, the exact identity between pressure and collision rate, the
  * reference equation of state; g(r) against a brute-force pair count and an ideal gas;
  * the mean-square displacement of a nearly free gas; the scene checks (close packing,
@@ -17,7 +17,7 @@
 
 #include "lz/edmd.h"
 #include "lz/edmd_obs.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/rng.h"
 #include "lztest.h"
 #include "support.h"

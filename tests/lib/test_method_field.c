@@ -1,4 +1,4 @@
-/* test_method_field.c — the `field` method (lib/src/method_field.c): its scene checks,
+/* test_method_field.c — the `field` method (lib/app/method_field.c): its scene checks,
  * and runs through it — adsorption to exact jamming and to a target, one and two
  * particles, 3D, moves that keep the hard core, the error of a target that jams
  * first, and the square well (an energy that a brute-force pair count reproduces,
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lz/method.h"
+#include "method.h"
 #include "lz/walk.h"
 #include "lztest.h"
 #include "support.h"

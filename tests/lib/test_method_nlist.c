@@ -1,5 +1,5 @@
 /* test_method_nlist.c — the four neighbour drivers of one hard-disk walk (lz/nwalk.h)
- * and the `nlist` method (lib/src/method_nlist.c): the scene checks; the drivers walk
+ * and the `nlist` method (lib/app/method_nlist.c): the scene checks; the drivers walk
  * the same path, bit for bit, while their structures are safe (the decisions depend
  * only on the pairs closer than r_c, which each of them then sees); the audit finds
  * what a stale list, a refresh beyond the safe interval or the one-copy refresh misses;
@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lz/method.h"
+#include "method.h"
 #include "lz/nwalk.h"
 #include "lz/rng.h"
 #include "lz/walk.h"

@@ -10,8 +10,8 @@
 
 #include <gsl/gsl_rng.h>
 
-#include "lz/method.h"
-#include "lz/scene.h"
+#include "method.h"
+#include "scene.h"
 #include "lztest.h"
 #include "support.h"
 

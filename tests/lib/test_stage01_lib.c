@@ -10,11 +10,11 @@
 
 #include "lz/integrate.h"
 #include "lz/lozenge.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/output.h"
 #include "lz/potential.h"
 #include "lz/rng.h"
-#include "lz/scene.h"
+#include "scene.h"
 #include "lztest.h"
 #include "support.h"
 

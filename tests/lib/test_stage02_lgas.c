@@ -13,9 +13,9 @@
 #include <gsl/gsl_rng.h>
 
 #include "lz/lgas.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/output.h"
-#include "lz/scene.h"
+#include "scene.h"
 #include "lztest.h"
 #include "support.h"
 

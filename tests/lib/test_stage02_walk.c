@@ -7,8 +7,8 @@
 #include <string.h>
 
 #include "lz/lattice.h"
-#include "lz/method.h"
-#include "lz/scene.h"
+#include "method.h"
+#include "scene.h"
 #include "lz/profile.h"
 #include "lz/walk.h"
 #include "lztest.h"

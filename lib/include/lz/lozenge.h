@@ -48,7 +48,7 @@ typedef struct {
 	lz_formula f[LZ_FORMULAS_MAX];
 } lz_scheme;
 
-/* ---- exact rational arithmetic (lib/src/ratio.c) ---- */
+/* ---- exact rational arithmetic (lib/01-lozenge/lozenge_lib.c) ---- */
 /* num/den reduced, sign on num. LZ_EINVAL-free: den == 0 gives {0, 0}, which every
  * function treats as invalid (lz_ratio_ok). Overflow beyond 2^62 is reported the same
  * way. */
@@ -76,7 +76,7 @@ const char *lz_ratio_str(lz_ratio a, char *buf, size_t size);
 int lz_formula_order(const lz_formula *f, int max_deriv, int *order,
                      lz_ratio *leading, int *deriv);
 
-/* ---- known schemes and the diagram (lib/src/lozenge_draw.c) ---- */
+/* ---- known schemes and the diagram (lib/01-lozenge/lozenge_lib.c) ---- */
 
 /* "verlet", "velocity" (the central-difference velocity), "leapfrog",
  * "velocity-verlet", "euler", "symplectic-euler"; NULL if unknown. */

@@ -32,7 +32,7 @@
 #include "lz/error.h"
 #include "lz/lattice.h"
 #include "lz/lgas.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
 #include "lz/timer.h"

@@ -1,4 +1,4 @@
-/* bits.c — the power-of-two check and Morton decoding (the library half of lz/bits.h;
+/* bits_lib.c — the power-of-two check and Morton decoding (the library half of lz/bits.h;
  * the wrap and the encoders are graded, in solutions/02-lattice/bits.c). */
 #include <inttypes.h>
 #include <stdint.h>

@@ -29,7 +29,7 @@
 #include "lz/edmd.h"
 #include "lz/edmd_obs.h"
 #include "lz/error.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
 #include "lz/timer.h"

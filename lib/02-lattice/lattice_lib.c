@@ -1,4 +1,4 @@
-/* lattice_tables.c — the library half of lz/lattice.h: kinds and names, direction
+/* lattice_lib.c — the library half of lz/lattice.h: kinds and names, direction
  * tables, the side check and the box. The distances and the correction table are
  * graded (solutions/02-lattice/lattice.c). */
 #include <math.h>

@@ -22,7 +22,7 @@
 #include "lz/error.h"
 #include "lz/field.h"
 #include "lz/lattice.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
 #include "lz/timer.h"

@@ -1,7 +1,7 @@
 /* method.c — the registry of engines, in course order. A stage adds its method here. */
 #include <string.h>
 
-#include "lz/method.h"
+#include "method.h"
 
 static const lz_method *const lz_registry[] = {
 	&lz_method_verlet,

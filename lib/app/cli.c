@@ -11,12 +11,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "lz/cli.h"
+#include "cli.h"
 #include "lz/error.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/output.h"
 #include "lz/rng.h"
-#include "lz/scene.h"
+#include "scene.h"
 #include "lz/timer.h"
 
 #ifndef LZ_SCENE_DIR

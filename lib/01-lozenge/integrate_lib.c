@@ -1,4 +1,4 @@
-/* md.c — the lz_md state: allocation, force evaluation, start-up, the checked step,
+/* integrate_lib.c — the lz_md state: allocation, force evaluation, start-up, the checked step,
  * energies. The step functions themselves are graded (solutions/01-lozenge). */
 #include <math.h>
 #include <stdint.h>

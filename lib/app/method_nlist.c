@@ -16,7 +16,7 @@
 #include <stdio.h>
 
 #include "lz/error.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/nwalk.h"
 #include "lz/progress.h"
 #include "lz/rng.h"

@@ -17,7 +17,7 @@
 #include "lz/error.h"
 #include "lz/gr.h"
 #include "lz/lattice.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/profile.h"
 #include "lz/progress.h"
 #include "lz/rng.h"

@@ -1,4 +1,4 @@
-/* sums.c — the two reference summations the graded ones are measured against. */
+/* fpsum_lib.c — the two reference summations the graded ones are measured against. */
 #include "lz/fpsum.h"
 
 double lz_sum_naive(const double *x, size_t n)

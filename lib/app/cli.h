@@ -1,4 +1,4 @@
-/* lz/cli.h — the `lz` command line, callable in-process (the tests call it).
+/* cli.h — the `lz` command line, callable in-process (the tests call it).
  *
  *   lz run SCENE [key=value ...] [--out DIR] [--quiet]
  *   lz list

@@ -1,4 +1,4 @@
-/* lz/method.h — the registry of simulation engines a scene can name.
+/* method.h — the registry of simulation engines a scene can name.
  *
  * A method is a key table (lz/scene.h), an optional cross-key check and a run
  * function. The CLI binds the scene, opens the run directory and the summary,
@@ -15,7 +15,7 @@
 
 #include "lz/lattice.h"
 #include "lz/output.h"
-#include "lz/scene.h"
+#include "scene.h"
 
 /* What a running method may use. */
 typedef struct {
@@ -33,7 +33,7 @@ typedef struct lz_method {
 	int (*run)(const lz_scene *s, lz_run *run);
 } lz_method;
 
-/* ---- files the methods share (lib/src/run_files.c) ---- */
+/* ---- files the methods share (run_files.c) ---- */
 
 /* config.dat in the run directory: n particles of radius R (lattice units) centred on
  * the sites r (dim int32_t each, every coordinate in [0, L)) of a periodic box of side
@@ -74,7 +74,7 @@ const lz_method *lz_method_find(const char *name);
 /* All registered methods, in course order; *n gets their number. */
 const lz_method *const *lz_methods(size_t *n);
 
-/* The engines (each defined in its own lib/src/method_*.c). */
+/* The engines (each defined in its own lib/app/method_*.c). */
 extern const lz_method lz_method_verlet;
 extern const lz_method lz_method_walk;
 extern const lz_method lz_method_lattice_gas;

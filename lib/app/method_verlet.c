@@ -17,7 +17,7 @@
 
 #include "lz/error.h"
 #include "lz/integrate.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/potential.h"
 #include "lz/progress.h"
 #include "lz/rng.h"

@@ -4,7 +4,7 @@
 #include <stdio.h>
 
 #include "lz/error.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/walk.h"
 
 int lz_run_write_config(const lz_run *run, lz_lattice_kind kind, int32_t side, size_t n,

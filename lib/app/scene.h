@@ -1,4 +1,4 @@
-/* lz/scene.h — scene files: `key = value` lines, '#' comments, one key per line.
+/* scene.h — scene files: `key = value` lines, '#' comments, one key per line.
  *
  * A scene names its engine with `method = NAME`; the method's key table (lz/method.h)
  * says which keys exist, their types, defaults and allowed ranges. Parsing is in two

@@ -12,9 +12,9 @@
 #include <string.h>
 
 #include "lz/error.h"
-#include "lz/method.h"
+#include "method.h"
 #include "lz/rng.h"
-#include "lz/scene.h"
+#include "scene.h"
 
 #define LZ_SCENE_LINE_MAX 4096       /* bytes in one line */
 #define LZ_SCENE_FILE_MAX (1 << 20)  /* bytes in one file: a scene is a few lines */
