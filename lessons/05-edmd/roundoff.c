@@ -82,8 +82,7 @@ static void shift_clock(lz_edmd *e, double T0)
 	e->now += T0;
 	for (size_t i = 0; i < e->n; i++)
 		e->p[i].t0 += T0;
-	for (size_t k = 0; k < e->heap->n; k++)
-		e->heap->node[k].t += T0;
+	lz_heap_shift(e->heap, -T0);
 }
 
 static int run(size_t n, const sizes *sz, double T0, int rebase, outcome *o)

@@ -8,27 +8,6 @@
 #include "lz/error.h"
 #include "lz/nlist.h"
 
-/* The first room given to an empty copy, in entries. */
-#define NBUF_FIRST 64
-
-int lz_nbuf_grow(lz_nbuf *b)
-{
-	/* The offsets start[] are 32-bit, so a copy can never hold more entries. */
-	if (b->cap >= UINT32_MAX)
-		return lz_error(LZ_ENOMEM, "a neighbour list of more than %u entries: the row "
-		                "offsets are 32-bit (fewer particles or a smaller r_l)",
-		                (unsigned)UINT32_MAX);
-	size_t cap = b->cap ? 2 * b->cap : NBUF_FIRST;
-	if (cap > UINT32_MAX)
-		cap = UINT32_MAX;
-	uint32_t *idx = realloc(b->idx, cap * sizeof *idx);
-	if (!idx)
-		return lz_error(LZ_ENOMEM, "no memory for %zu neighbour-list entries", cap);
-	b->idx = idx;
-	b->cap = cap;
-	return LZ_OK;
-}
-
 lz_nlist *lz_nlist_alloc(const lz_lattice_box *box, size_t n, double rl)
 {
 	if (!box)

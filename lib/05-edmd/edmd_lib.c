@@ -1,6 +1,7 @@
 /* edmd_lib.c — the library half of lz/edmd.h: cells and their faces, the box and its
- * checks, the initial states and the start. The run, the re-base and the guards are
- * in edmd_run.c; the graded event loop in solutions/05-edmd/edmd.c. */
+ * checks, the initial states and the start, the counters and the overlap check. The
+ * run, the re-base and the guards are in edmd_run.c (which calls this file, never
+ * the other way round); the graded event loop in solutions/05-edmd/edmd.c. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -473,4 +474,47 @@ void lz_edmd_start(lz_edmd *e)
 	lz_edmd_reset_counts(e);
 	for (size_t i = 0; i < e->n; i++)
 		lz_edmd_predict(e, (uint32_t)i);
+}
+
+void lz_edmd_reset_counts(lz_edmd *e)
+{
+	e->events = e->collisions = e->crossings = e->bounces = e->stale = 0;
+	e->virial = 0;
+	e->coll_mark = 0;
+	e->t_reset = lz_edmd_time(e);
+}
+
+double lz_edmd_max_overlap(const lz_edmd *e, uint32_t *pi, uint32_t *pj)
+{
+	double worst = 0;
+	lz_edmd_block b;
+	for (uint32_t i = 0; i < e->n; i++) {
+		double ri[3], vi[3];
+		lz_edmd_state(e, &e->p[i], e->now, ri, vi);
+		lz_edmd_block_of(e, e->p[i].cell, &b);
+		for (int z = 0; z < b.n[2]; z++)
+			for (int y = 0; y < b.n[1]; y++)
+				for (int x = 0; x < b.n[0]; x++) {
+					uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
+					double sh[3] = {b.shift[0][x], b.shift[1][y], b.shift[2][z]};
+					for (int32_t j = e->list[c].head; j >= 0; j = e->next[j]) {
+						if ((uint32_t)j <= i)
+							continue;
+						double rj[3], vj[3], d2 = 0;
+						lz_edmd_state(e, &e->p[j], e->now, rj, vj);
+						for (int a = 0; a < 3; a++) {
+							double d = rj[a] + sh[a] - ri[a];
+							d2 += d * d;
+						}
+						if (d2 < 1 && 1 - sqrt(d2) > worst) {
+							worst = 1 - sqrt(d2);
+							if (pi)
+								*pi = i;
+							if (pj)
+								*pj = (uint32_t)j;
+						}
+					}
+				}
+	}
+	return worst;
 }

@@ -1,6 +1,7 @@
 /* edmd_run.c — the run of lz/edmd.h around the graded event loop: re-basing the clock,
  * renumbering the particles cell by cell, the collapse and stall guards, and the
- * O(n) observables and checks (energy, momentum, temperature, overlaps, invariants). */
+ * O(n) observables and checks (energy, momentum, temperature, invariants). It calls
+ * edmd_lib.c (the cells), never the other way round. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -19,8 +20,7 @@ void lz_edmd_rebase(lz_edmd *e)
 	double now = e->now;
 	for (size_t i = 0; i < e->n; i++)
 		e->p[i].t0 = 0;
-	for (size_t k = 0; k < e->heap->n; k++)
-		e->heap->node[k].t -= now;
+	lz_heap_shift(e->heap, now);
 	e->t_base += now;
 	e->now = 0;
 	e->since_rebase = 0;
@@ -31,14 +31,6 @@ void lz_edmd_set_time(lz_edmd *e, double t)
 {
 	e->t_reset += t - lz_edmd_time(e);
 	e->t_base = t - e->now;
-}
-
-void lz_edmd_reset_counts(lz_edmd *e)
-{
-	e->events = e->collisions = e->crossings = e->bounces = e->stale = 0;
-	e->virial = 0;
-	e->coll_mark = 0;
-	e->t_reset = lz_edmd_time(e);
 }
 
 /* Rebuild the cell lists from p[].cell, each list in increasing particle number (so
@@ -52,17 +44,17 @@ static void relink(lz_edmd *e)
 
 int lz_edmd_sort(lz_edmd *e)
 {
-	/* The new number of every particle, walking the cells in order. heap->pos is
-	 * rebuilt at the end, so it holds the new numbers meanwhile. */
-	uint32_t *to = e->heap->pos, k = 0;
+	/* The new number of every particle, walking the cells in order. */
+	uint32_t *to = malloc(e->n * sizeof *to), k = 0;
+	if (!to)
+		return lz_error(LZ_ENOMEM, "no memory to renumber %zu particles", e->n);
 	for (size_t c = 0; c < e->ncells; c++)
 		for (int32_t j = e->list[c].head; j >= 0; j = e->next[j])
 			to[j] = k++;
 	for (size_t i = 0; i < e->n; i++)
 		if (e->ev[i].partner >= 0)
 			e->ev[i].partner = (int32_t)to[e->ev[i].partner];
-	for (size_t q = 0; q < e->heap->n; q++)
-		e->heap->node[q].id = to[e->heap->node[q].id];
+	lz_heap_renumber(e->heap, to);
 	/* apply the permutation in place, cycle by cycle: each swap puts one particle
 	 * where it belongs */
 	for (uint32_t i = 0; i < e->n; i++)
@@ -77,10 +69,7 @@ int lz_edmd_sort(lz_edmd *e)
 			to[i] = to[j];
 			to[j] = j;
 		}
-	for (size_t i = 0; i < e->n; i++)
-		to[i] = LZ_HEAP_NONE;
-	for (size_t q = 0; q < e->heap->n; q++)
-		to[e->heap->node[q].id] = (uint32_t)q;
+	free(to);
 	relink(e);
 	return LZ_OK;
 }
@@ -107,20 +96,12 @@ static int check_stall(const lz_edmd *e, uint64_t window)
 	                lz_edmd_time(e), (unsigned long long)window, e->now, tau, e->restitution);
 }
 
-/* The node that comes up when node k leaves the heap: its earlier child. */
-static size_t earlier_child(const lz_heap *h, size_t k)
-{
-	size_t c = 2 * k + 1;
-	return c + (h->node[c + 1].t < h->node[c].t);
-}
-
 /* Before an event: ask for what this event and the next two will read, a stage of the
  * chain each. Event by event the loop jumps to random places in memory, and every
  * prediction waits on a chain of misses (cell heads, particle records); fetched an
- * event or two ahead, the chains of successive events overlap. The next event is
- * almost always the root's earlier child (a new event is seldom that soon), and the
- * one after it the earlier of that child's sibling and its own earlier child. A hint
- * only: nothing is written, and a wrong guess costs a few wasted fetches. */
+ * event or two ahead, the chains of successive events overlap; the heap says which
+ * events are likely next (lz_heap_next_items). A hint only: nothing is written, and a
+ * wrong guess costs a few wasted fetches. */
 static void fetch_ahead(const lz_edmd *e)
 {
 	const lz_heap *h = e->heap;
@@ -131,24 +112,21 @@ static void fetch_ahead(const lz_edmd *e)
 	int32_t j = e->ev[lz_heap_top(h)].partner;
 	if (j >= 0) {
 		lz_edmd_prefetch_block(e, e->p[j].cell);
-		__builtin_prefetch(&h->node[h->pos[j]]);
+		lz_heap_prefetch_node(h, (uint32_t)j);
 	}
 	/* the next event: its record and event were asked for an event ago; now its
 	 * cells, its partner's record and heap position */
-	size_t k1 = earlier_child(h, 0);
-	uint32_t c1 = h->node[k1].id;
+	uint32_t c1, c2;
+	lz_heap_next_items(h, &c1, &c2);
 	int32_t j1 = e->ev[c1].partner;
 	lz_edmd_prefetch_block(e, e->p[c1].cell);
 	if (j1 >= 0) {
 		__builtin_prefetch(&e->p[j1]);
-		__builtin_prefetch(&h->pos[j1]);
+		lz_heap_prefetch_pos(h, (uint32_t)j1);
 	}
 	/* the event after: its record and event */
-	size_t k2 = k1 == 1 ? 2 : 1, kc = earlier_child(h, k1);
-	if (h->node[kc].t < h->node[k2].t)
-		k2 = kc;
-	__builtin_prefetch(&e->p[h->node[k2].id]);
-	__builtin_prefetch(&e->ev[h->node[k2].id]);
+	__builtin_prefetch(&e->p[c2]);
+	__builtin_prefetch(&e->ev[c2]);
 }
 
 int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
@@ -164,8 +142,8 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 				return st;
 			lz_edmd_rebase(e);
 			e->coll_mark = e->collisions;
-			if (e->sort_every && e->rebases % e->sort_every == 0)
-				lz_edmd_sort(e);
+			if (e->sort_every && e->rebases % e->sort_every == 0 && (st = lz_edmd_sort(e)))
+				return st;
 		}
 		if (e->t_base + lz_heap_top_t(e->heap) > t_stop) {
 			e->now = t_stop - e->t_base;
@@ -217,41 +195,6 @@ double lz_edmd_temperature(const lz_edmd *e)
 	return 2 * ke / (e->dim * (double)e->n);
 }
 
-double lz_edmd_max_overlap(const lz_edmd *e, uint32_t *pi, uint32_t *pj)
-{
-	double worst = 0;
-	lz_edmd_block b;
-	for (uint32_t i = 0; i < e->n; i++) {
-		double ri[3], vi[3];
-		lz_edmd_state(e, &e->p[i], e->now, ri, vi);
-		lz_edmd_block_of(e, e->p[i].cell, &b);
-		for (int z = 0; z < b.n[2]; z++)
-			for (int y = 0; y < b.n[1]; y++)
-				for (int x = 0; x < b.n[0]; x++) {
-					uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
-					double sh[3] = {b.shift[0][x], b.shift[1][y], b.shift[2][z]};
-					for (int32_t j = e->list[c].head; j >= 0; j = e->next[j]) {
-						if ((uint32_t)j <= i)
-							continue;
-						double rj[3], vj[3], d2 = 0;
-						lz_edmd_state(e, &e->p[j], e->now, rj, vj);
-						for (int a = 0; a < 3; a++) {
-							double d = rj[a] + sh[a] - ri[a];
-							d2 += d * d;
-						}
-						if (d2 < 1 && 1 - sqrt(d2) > worst) {
-							worst = 1 - sqrt(d2);
-							if (pi)
-								*pi = i;
-							if (pj)
-								*pj = (uint32_t)j;
-						}
-					}
-				}
-	}
-	return worst;
-}
-
 /* Particle i's position now lies in its cell (to tol) and inside the walls. */
 static int audit_place(const lz_edmd *e, uint32_t i, double tol)
 {
@@ -283,7 +226,7 @@ static int audit_clocks(const lz_edmd *e, uint32_t i)
 		                i, p->t0, e->now);
 	if (!lz_heap_contains(e->heap, i))
 		return lz_error(LZ_EDOM, "particle %u has no event in the heap", i);
-	double t = e->heap->node[e->heap->pos[i]].t;
+	double t = lz_heap_key(e->heap, i);
 	if (t < e->now - slack)
 		return lz_error(LZ_EDOM, "particle %u: its event at %.17g is before now = %.17g", i,
 		                t, e->now);

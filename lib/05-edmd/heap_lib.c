@@ -1,5 +1,6 @@
-/* heap_lib.c — allocation and the invariant check of the indexed heap (lz/heap.h);
- * the sifts are the assignment (solutions/05-edmd/heap.c). */
+/* heap_lib.c — allocation, the changes of every key or item, and the invariant check
+ * of the indexed heap (lz/heap.h); the sifts are the assignment
+ * (solutions/05-edmd/heap.c). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -49,6 +50,22 @@ void lz_heap_clear(lz_heap *h)
 	h->n = 0;
 	for (size_t i = 0; i < h->cap; i++)
 		h->pos[i] = LZ_HEAP_NONE;
+}
+
+void lz_heap_shift(lz_heap *h, double dt)
+{
+	for (size_t k = 0; k < h->n; k++)
+		h->node[k].t -= dt;
+}
+
+void lz_heap_renumber(lz_heap *h, const uint32_t *to)
+{
+	for (size_t i = 0; i < h->cap; i++)
+		h->pos[i] = LZ_HEAP_NONE;
+	for (size_t k = 0; k < h->n; k++) {
+		h->node[k].id = to[h->node[k].id];
+		h->pos[h->node[k].id] = (uint32_t)k;
+	}
 }
 
 int lz_heap_audit(const lz_heap *h)

@@ -1,7 +1,7 @@
 /* lz/heap.h — an indexed binary min-heap: one key (an event time) per item, the
  * smallest on top, and a position index so that an item's key can be changed without
- * searching for it (Miller & Luding, seed 000: "one event per particle" in an
- * implicit heap).
+ * searching for it (Miller & Luding, J. Comput. Phys. 193, 306 (2004), §II: one event
+ * per particle, in an implicit heap).
  *
  * Items are the integers 0 .. cap-1 (particle numbers). The heap is an array of nodes
  * node[0 .. n-1], each {t, id}, in which every node is no later than its two children:
@@ -67,6 +67,34 @@ static inline int lz_heap_contains(const lz_heap *h, uint32_t id)
 	return id < h->cap && h->pos[id] != LZ_HEAP_NONE;
 }
 
+/* The key of item id: precondition lz_heap_contains(h, id). O(1). */
+static inline double lz_heap_key(const lz_heap *h, uint32_t id) { return h->node[h->pos[id]].t; }
+
+/* The items most likely to come out next after the top, for a caller that fetches
+ * their data ahead: the root's earlier child (*second), and the earlier of that
+ * child's sibling and its own earlier child (*third). A guess — a new key may come
+ * first — that reads no more than the root's two levels below. Precondition
+ * h->n >= 7. O(1). */
+static inline void lz_heap_next_items(const lz_heap *h, uint32_t *second, uint32_t *third)
+{
+	const lz_heap_node *node = h->node;
+	size_t k1 = 1 + (node[2].t < node[1].t), k2 = k1 == 1 ? 2 : 1;
+	size_t kc = 2 * k1 + 1 + (node[2 * k1 + 2].t < node[2 * k1 + 1].t);
+	*second = node[k1].id;
+	*third = node[kc].t < node[k2].t ? node[kc].id : node[k2].id;
+}
+
+/* Ask the memory for item id's node (precondition: in the heap), or for its place in
+ * pos[], ahead of an update. A hint: nothing is read or written. */
+static inline void lz_heap_prefetch_node(const lz_heap *h, uint32_t id)
+{
+	__builtin_prefetch(&h->node[h->pos[id]]);
+}
+static inline void lz_heap_prefetch_pos(const lz_heap *h, uint32_t id)
+{
+	__builtin_prefetch(&h->pos[id]);
+}
+
 /* ---- graded (solutions/05-edmd/heap.c) ---- */
 
 /* Move the node at index k up (towards the root) while it is earlier than its parent
@@ -92,6 +120,16 @@ uint32_t lz_heap_pop(lz_heap *h);
  * before, down if later. This is how an event is replaced — no deletion, no search:
  * pos[id] says where the node is. O(log n). */
 void lz_heap_update(lz_heap *h, uint32_t id, double t);
+
+/* ---- changes of every key or item (library) ---- */
+
+/* Subtract dt from every key: the order is unchanged (up to ties that round together,
+ * which the heap allows). For re-basing a clock. O(n). */
+void lz_heap_shift(lz_heap *h, double dt);
+
+/* Rename every item: the item id becomes to[id] (to: a permutation of 0 .. cap-1),
+ * keys and order unchanged, pos[] rebuilt. O(cap). */
+void lz_heap_renumber(lz_heap *h, const uint32_t *to);
 
 /* ---- checks (library) ---- */
 

@@ -46,8 +46,10 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "lz/cells.h"
+#include "lz/error.h"
 #include "lz/lattice.h"
 
 /* One copy of the lists. Invariant once written: start[0] = 0, start[i] <= start[i+1],
@@ -74,8 +76,28 @@ typedef struct {
 	                               duplicate in O(1), and must clear it afterwards */
 } lz_nlist;
 
-/* Room for one more entry in b, by doubling idx. LZ_OK or LZ_ENOMEM (b unchanged). */
-int lz_nbuf_grow(lz_nbuf *b);
+/* Entries a copy starts with. */
+#define LZ_NBUF_FIRST 64
+
+/* Room for one more entry in b, by doubling idx. LZ_OK or LZ_ENOMEM (b unchanged).
+ * The row offsets start[] are 32-bit, so a copy never holds more than 2^32 - 1
+ * entries. Amortised O(1). */
+static inline int lz_nbuf_grow(lz_nbuf *b)
+{
+	if (b->cap >= UINT32_MAX)
+		return lz_error(LZ_ENOMEM, "a neighbour list of more than %u entries: the row "
+		                "offsets are 32-bit (fewer particles or a smaller r_l)",
+		                (unsigned)UINT32_MAX);
+	size_t cap = b->cap ? 2 * b->cap : LZ_NBUF_FIRST;
+	if (cap > UINT32_MAX)
+		cap = UINT32_MAX;
+	uint32_t *idx = realloc(b->idx, cap * sizeof *idx);
+	if (!idx)
+		return lz_error(LZ_ENOMEM, "no memory for %zu neighbour-list entries", cap);
+	b->idx = idx;
+	b->cap = cap;
+	return LZ_OK;
+}
 
 /* Append j to the row being written in b. LZ_OK, or LZ_ENOMEM if idx cannot grow.
  * Amortised O(1). */
