@@ -151,15 +151,15 @@ static int lz_cli_run_load(const lz_cli_args *a, lz_scene **sp, const lz_method 
 	if (!m)
 		return lz_scene_fail(s, "method", "unknown method '%s'; the methods are: %s",
 		                     method, names);
-	return lz_scene_bind(s, m);
+	return lz_method_bind(m, s);
 }
 
 /* An automatic seed is logged so that seed=N repeats the run. */
 static void lz_cli_log_seeds(const lz_scene *s, const lz_method *m)
 {
-	for (size_t i = 0; i < m->nkeys; i++) {
-		const char *key = m->keys[i].name;
-		if (m->keys[i].type == LZ_KEY_SEED && strcmp(lz_scene_text(s, key), "auto") == 0)
+	for (size_t i = 0; i < m->keys.n; i++) {
+		const char *key = m->keys.key[i].name;
+		if (m->keys.key[i].type == LZ_KEY_SEED && strcmp(lz_scene_text(s, key), "auto") == 0)
 			fprintf(stderr, "lz: %s = %lu (auto); pass %s=%lu to repeat this run\n", key,
 			        lz_scene_seed(s, key), key, lz_scene_seed(s, key));
 	}
@@ -354,7 +354,7 @@ static void lz_cli_help_line(char cell[NCOLS][256], const int *width)
 
 static void lz_cli_help_method(const lz_method *m)
 {
-	char (*rows)[NCOLS][256] = calloc(m->nkeys + 2, sizeof *rows);
+	char (*rows)[NCOLS][256] = calloc(m->keys.n + 2, sizeof *rows);
 	if (!rows) {
 		lz_error(LZ_ENOMEM, "no memory for the key table");
 		return;
@@ -362,9 +362,9 @@ static void lz_cli_help_method(const lz_method *m)
 	int width[NCOLS] = {0};
 	for (int c = 0; c < NCOLS; c++)
 		snprintf(rows[0][c], 256, "%s", lz_cli_help_heads[c]);
-	for (size_t i = 0; i < m->nkeys; i++)
-		lz_cli_help_row(&m->keys[i], rows[i + 2]);
-	for (size_t i = 0; i < m->nkeys + 2; i++)
+	for (size_t i = 0; i < m->keys.n; i++)
+		lz_cli_help_row(&m->keys.key[i], rows[i + 2]);
+	for (size_t i = 0; i < m->keys.n + 2; i++)
 		for (int c = 0; c < NCOLS; c++)
 			if (lz_cli_text_width(rows[i][c]) > width[c])
 				width[c] = lz_cli_text_width(rows[i][c]);
@@ -372,7 +372,7 @@ static void lz_cli_help_method(const lz_method *m)
 		memset(rows[1][c], '-', (size_t)width[c]);
 	printf("method %s: %s\n\nkey = value lines; `method = %s` picks this method.\n\n",
 	       m->name, m->help, m->name);
-	for (size_t i = 0; i < m->nkeys + 2; i++)
+	for (size_t i = 0; i < m->keys.n + 2; i++)
 		lz_cli_help_line(rows[i], width);
 	free(rows);
 }

@@ -1,6 +1,8 @@
-/* method.c — the registry of engines, in course order. A stage adds its method here. */
+/* method.c — the registry of engines, in course order (a stage adds its method here),
+ * and the binding of a scene to one. */
 #include <string.h>
 
+#include "lz/error.h"
 #include "method.h"
 
 static const lz_method *const lz_registry[] = {
@@ -24,4 +26,12 @@ const lz_method *const *lz_methods(size_t *n)
 {
 	*n = sizeof lz_registry / sizeof lz_registry[0];
 	return lz_registry;
+}
+
+int lz_method_bind(const lz_method *m, lz_scene *s)
+{
+	int rc = lz_scene_bind(s, &m->keys);
+	if (rc == LZ_OK && m->check && (rc = m->check(s)) != LZ_OK)
+		lz_scene_unbind(s);
+	return rc;
 }

@@ -27,11 +27,18 @@ typedef struct {
 typedef struct lz_method {
 	const char *name;        /* the value of `method =` */
 	const char *help;        /* one line for `lz help` */
-	const lz_key *keys;      /* the key table; "method" itself need not be listed */
-	size_t nkeys;
+	lz_key_table keys;       /* its keys ("method" itself need not be listed), under name */
 	int (*check)(const lz_scene *s);  /* cross-key check, or NULL */
 	int (*run)(const lz_scene *s, lz_run *run);
 } lz_method;
+
+/* A method's table entry: its name given once, for the method and its key table. */
+#define LZ_METHOD_KEYS(name_, table_) \
+	.name = name_, .keys = {name_, table_, sizeof table_ / sizeof table_[0]}
+
+/* Bind scene s to m's keys (lz_scene_bind), then run m's cross-key check. On an error
+ * the scene is left unbound. */
+int lz_method_bind(const lz_method *m, lz_scene *s);
 
 /* ---- files the methods share (run_files.c) ---- */
 

@@ -905,12 +905,10 @@ static int run(const lz_scene *s, lz_run *run)
 }
 
 const lz_method lz_method_edmd = {
-	.name = "edmd",
+	LZ_METHOD_KEYS("edmd", keys),
 	.help = "event-driven hard spheres (3D) and disks (2D): one event per particle in a "
 	        "heap, cells, exact collisions; pressure, collision rate and their identity "
 	        "with error bars; walls, gravity, inelastic cooling, g(r), msd",
-	.keys = keys,
-	.nkeys = sizeof keys / sizeof keys[0],
 	.check = check,
 	.run = run,
 };

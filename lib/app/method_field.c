@@ -541,12 +541,10 @@ static int run(const lz_scene *s, lz_run *run)
 }
 
 const lz_method lz_method_field = {
-	.name = "field",
+	LZ_METHOD_KEYS("field", keys),
 	.help = "hard disks (spheres) painted on a byte field: random sequential adsorption to "
 	        "a number, a coverage or exact jamming, O(1) collision tests, walk or ballistic "
 	        "moves, square-well Metropolis",
-	.keys = keys,
-	.nkeys = sizeof keys / sizeof keys[0],
 	.check = check,
 	.run = run,
 };

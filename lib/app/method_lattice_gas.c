@@ -674,11 +674,9 @@ static int run(const lz_scene *s, lz_run *run)
 }
 
 const lz_method lz_method_lattice_gas = {
-	.name = "lattice-gas",
+	LZ_METHOD_KEYS("lattice-gas", keys),
 	.help = "HPP and FHP lattice gases: propagation by masks, collisions by table; "
 	        "exact conservation, shear-wave viscosity, pulse isotropy, flow past obstacles",
-	.keys = keys,
-	.nkeys = sizeof keys / sizeof keys[0],
 	.check = check,
 	.run = run,
 };

@@ -292,12 +292,10 @@ static int run(const lz_scene *s, lz_run *run)
 }
 
 const lz_method lz_method_nlist = {
-	.name = "nlist",
+	LZ_METHOD_KEYS("nlist", keys),
 	.help = "one hard-disk random walk, four ways to find the neighbours (thesis table "
 	        "2.2): Verlet lists (nl), the fast O(N) refresh (fnl), cell lists (cl), the "
 	        "field (fr); skin, refresh interval and the pairs they miss",
-	.keys = keys,
-	.nkeys = sizeof keys / sizeof keys[0],
 	.check = check,
 	.run = run,
 };

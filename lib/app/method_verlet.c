@@ -474,11 +474,9 @@ static int run(const lz_scene *s, lz_run *run)
 }
 
 const lz_method lz_method_verlet = {
-	.name = "verlet",
+	LZ_METHOD_KEYS("verlet", keys),
 	.help = "time-stepped MD: Euler, Verlet, velocity Verlet, leapfrog on harmonic "
 	        "oscillators or a Lennard-Jones fluid",
-	.keys = keys,
-	.nkeys = sizeof keys / sizeof keys[0],
 	.check = check,
 	.run = run,
 };

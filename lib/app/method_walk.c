@@ -457,11 +457,9 @@ static int run(const lz_scene *s, lz_run *run)
 }
 
 const lz_method lz_method_walk = {
-	.name = "walk",
+	LZ_METHOD_KEYS("walk", keys),
 	.help = "hard disks (spheres) on a lattice: random walk or ballistic moves with "
 	        "rejection of overlaps, all pairs; g(r) on the lattice",
-	.keys = keys,
-	.nkeys = sizeof keys / sizeof keys[0],
 	.check = check,
 	.run = run,
 };

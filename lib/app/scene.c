@@ -12,7 +12,6 @@
 #include <string.h>
 
 #include "lz/error.h"
-#include "method.h"
 #include "lz/rng.h"
 #include "scene.h"
 
@@ -39,8 +38,8 @@ struct lz_scene {
 	char *origin;  /* the file's path (or the name): the place of whole-scene messages */
 	lz_entry *e;
 	size_t n, cap;
-	const lz_method *m;  /* the method of a successful bind, else NULL */
-	lz_value *v;         /* one per key of m->keys */
+	const lz_key_table *t;  /* the table of a successful bind, else NULL */
+	lz_value *v;            /* one per key of the table */
 };
 
 /* ---- reading ---- */
@@ -143,11 +142,11 @@ static int lz_scene_find(const lz_scene *s, const char *key)
 	return -1;
 }
 
-static void lz_scene_unbind(lz_scene *s)
+void lz_scene_unbind(lz_scene *s)
 {
 	free(s->v);
 	s->v = NULL;
-	s->m = NULL;
+	s->t = NULL;
 }
 
 /* Set key = value from `where` (line 0: an override, which replaces an earlier
@@ -338,10 +337,10 @@ const char *lz_scene_method(const lz_scene *s)
 
 /* ---- binding ---- */
 
-static int lz_key_index(const lz_method *m, const char *key)
+static int lz_key_index(const lz_key_table *t, const char *key)
 {
-	for (size_t i = 0; i < m->nkeys; i++)
-		if (strcmp(m->keys[i].name, key) == 0)
+	for (size_t i = 0; i < t->n; i++)
+		if (strcmp(t->key[i].name, key) == 0)
 			return (int)i;
 	return -1;
 }
@@ -374,8 +373,8 @@ static int lz_unknown_key(const lz_scene *s, const lz_entry *e)
 {
 	char keys[1024] = "", hint[128] = "";
 	size_t len = 0, best = (size_t)-1;
-	for (size_t i = 0; i < s->m->nkeys; i++) {
-		const char *name = s->m->keys[i].name;
+	for (size_t i = 0; i < s->t->n; i++) {
+		const char *name = s->t->key[i].name;
 		size_t d = lz_edit_distance(e->key, name);
 		size_t longer = strlen(e->key) > strlen(name) ? strlen(e->key) : strlen(name);
 		/* A suggestion sharing less than half its letters would only confuse. */
@@ -388,7 +387,7 @@ static int lz_unknown_key(const lz_scene *s, const lz_entry *e)
 			                        name);
 	}
 	return lz_error(LZ_EINVAL, "%s: unknown key '%s' for method %s%s; its keys are: %s",
-	                e->where, e->key, s->m->name, hint, keys);
+	                e->where, e->key, s->t->method, hint, keys);
 }
 
 /* 0: an integer in *x; 1: not an integer; 2: an integer beyond any range we keep.
@@ -522,13 +521,13 @@ static int lz_scene_check_entries(const lz_scene *s)
 {
 	for (size_t i = 0; i < s->n; i++) {
 		const lz_entry *e = &s->e[i];
-		if (lz_key_index(s->m, e->key) >= 0)
+		if (lz_key_index(s->t, e->key) >= 0)
 			continue;
 		if (strcmp(e->key, "method") != 0)
 			return lz_unknown_key(s, e);
-		if (strcmp(e->value, s->m->name) != 0)
+		if (strcmp(e->value, s->t->method) != 0)
 			return lz_error(LZ_EINVAL, "%s: method = %s, but the scene is bound to "
-			                "method %s", e->where, e->value, s->m->name);
+			                "method %s", e->where, e->value, s->t->method);
 	}
 	return LZ_OK;
 }
@@ -536,21 +535,21 @@ static int lz_scene_check_entries(const lz_scene *s)
 /* Parse the value of every key of the table, given or default. */
 static int lz_scene_parse_values(lz_scene *s)
 {
-	for (size_t i = 0; i < s->m->nkeys; i++) {
-		const lz_key *k = &s->m->keys[i];
+	for (size_t i = 0; i < s->t->n; i++) {
+		const lz_key *k = &s->t->key[i];
 		lz_value *v = &s->v[i];
 		v->entry = lz_scene_find(s, k->name);
 		v->text = v->entry >= 0 ? s->e[v->entry].value : k->def;
 		if (!v->text)
 			return lz_error(LZ_EINVAL, "%s: missing key '%s' (%s), which method %s "
 			                "requires", s->origin, k->name, k->help ? k->help : "",
-			                s->m->name);
+			                s->t->method);
 		if (!*v->text) {  /* optional, no default: lz_scene_has says 0 */
 			v->text = NULL;
 			continue;
 		}
 		char def[256];
-		snprintf(def, sizeof def, "method %s: the default", s->m->name);
+		snprintf(def, sizeof def, "method %s: the default", s->t->method);
 		int rc = lz_value_parse(k, v->text, v->entry >= 0 ? s->e[v->entry].where : def, v);
 		if (rc != LZ_OK)
 			return rc;
@@ -558,20 +557,18 @@ static int lz_scene_parse_values(lz_scene *s)
 	return LZ_OK;
 }
 
-int lz_scene_bind(lz_scene *s, const lz_method *m)
+int lz_scene_bind(lz_scene *s, const lz_key_table *t)
 {
 	lz_scene_unbind(s);
-	if (!m)
-		return lz_error(LZ_EINVAL, "%s: no method to bind the scene to", s->origin);
-	s->m = m;
-	s->v = calloc(m->nkeys ? m->nkeys : 1, sizeof *s->v);
+	if (!t)
+		return lz_error(LZ_EINVAL, "%s: no key table to bind the scene to", s->origin);
+	s->t = t;
+	s->v = calloc(t->n ? t->n : 1, sizeof *s->v);
 	int rc = s->v ? LZ_OK : lz_error(LZ_ENOMEM, "%s: no memory to bind", s->origin);
 	if (rc == LZ_OK)
 		rc = lz_scene_check_entries(s);
 	if (rc == LZ_OK)
 		rc = lz_scene_parse_values(s);
-	if (rc == LZ_OK && m->check)
-		rc = m->check(s);
 	if (rc != LZ_OK)
 		lz_scene_unbind(s);
 	return rc;
@@ -588,19 +585,19 @@ static const char *lz_type_name(lz_key_type t)
 /* The value of `key` if it is declared with one of the types in mask (bit 1 << type). */
 static const lz_value *lz_scene_value(const lz_scene *s, const char *key, unsigned mask)
 {
-	if (!s->m) {
+	if (!s->t) {
 		lz_error(LZ_EINVAL, "%s: scene asked for key '%s' before lz_scene_bind", s->origin,
 		         key);
 		return NULL;
 	}
-	int i = lz_key_index(s->m, key);
+	int i = lz_key_index(s->t, key);
 	if (i < 0) {
-		lz_error(LZ_EINVAL, "method %s has no key '%s'", s->m->name, key);
+		lz_error(LZ_EINVAL, "method %s has no key '%s'", s->t->method, key);
 		return NULL;
 	}
-	if (!(mask >> s->m->keys[i].type & 1)) {
+	if (!(mask >> s->t->key[i].type & 1)) {
 		lz_error(LZ_EINVAL, "key '%s' of method %s is of type %s, asked for another type",
-		         key, s->m->name, lz_type_name(s->m->keys[i].type));
+		         key, s->t->method, lz_type_name(s->t->key[i].type));
 		return NULL;
 	}
 	return &s->v[i];
@@ -668,13 +665,13 @@ int lz_scene_fail(const lz_scene *s, const char *key, const char *fmt, ...)
 
 void lz_scene_json(const lz_scene *s, lz_json *j)
 {
-	if (!s->m) {
+	if (!s->t) {
 		lz_error(LZ_EINVAL, "%s: lz_scene_json before lz_scene_bind", s->origin);
 		return;
 	}
-	lz_json_str(j, "method", s->m->name);
-	for (size_t i = 0; i < s->m->nkeys; i++) {
-		const lz_key *k = &s->m->keys[i];
+	lz_json_str(j, "method", s->t->method);
+	for (size_t i = 0; i < s->t->n; i++) {
+		const lz_key *k = &s->t->key[i];
 		const lz_value *v = &s->v[i];
 		if (strcmp(k->name, "method") == 0)
 			continue;

@@ -1,7 +1,7 @@
 /* scene.h — scene files: `key = value` lines, '#' comments, one key per line.
  *
- * A scene names its engine with `method = NAME`; the method's key table (lz/method.h)
- * says which keys exist, their types, defaults and allowed ranges. Parsing is in two
+ * A scene names its engine with `method = NAME`; the engine's key table says which
+ * keys exist, their types, defaults and allowed ranges. Parsing is in two
  * passes: lz_scene_read() collects the lines and lz_scene_set() adds command-line
  * overrides; lz_scene_bind() then checks everything against the key table. Every
  * error names the place ("water.scene:7:" or "command line:") and the allowed range:
@@ -10,6 +10,8 @@
  */
 #ifndef LZ_SCENE_H
 #define LZ_SCENE_H
+
+#include <stddef.h>
 
 #include "lz/output.h"
 
@@ -22,7 +24,7 @@ typedef enum {
 	LZ_KEY_TEXT   /* any text without control characters (a label, a type name) */
 } lz_key_type;
 
-/* One entry of a method's key table. */
+/* One entry of an engine's key table. */
 typedef struct {
 	const char *name;
 	lz_key_type type;
@@ -35,8 +37,16 @@ typedef struct {
 	const char *help;     /* one line for `lz help METHOD` */
 } lz_key;
 
+/* A key table: the keys a scene may hold for one engine, and that engine's name (the
+ * value `method =` must have, and the name in messages: "unknown key 'x' for method
+ * edmd"). The parser knows nothing else of the engines. */
+typedef struct {
+	const char *method;
+	const lz_key *key;
+	size_t n;
+} lz_key_table;
+
 typedef struct lz_scene lz_scene;
-struct lz_method;
 
 /* Read a scene file. NULL with lz_error on a missing or unreadable file, binary
  * content, a line without '=', an empty key, a key given twice, or an empty file. */
@@ -53,13 +63,15 @@ const char *lz_scene_name(const lz_scene *s);
 /* The raw text of `method`, or NULL when the scene has none. */
 const char *lz_scene_method(const lz_scene *s);
 
-/* Check every key against the method's table: unknown keys, missing required keys,
- * wrong types, values out of range; fill in defaults; resolve seed=auto (the seed
- * actually used is then what lz_scene_seed returns and what lz_scene_json writes).
- * Then runs the method's own cross-key check. */
-int lz_scene_bind(lz_scene *s, const struct lz_method *m);
+/* Check every key against the table: unknown keys, missing required keys, wrong
+ * types, values out of range; fill in defaults; resolve seed=auto (the seed actually
+ * used is then what lz_scene_seed returns and what lz_scene_json writes). The table
+ * is kept, not copied. On an error the scene is left unbound. */
+int lz_scene_bind(lz_scene *s, const lz_key_table *t);
+/* Forget the binding (the scene's lines stay). O(1). */
+void lz_scene_unbind(lz_scene *s);
 
-/* Typed values of a bound scene. Asking for a key the method does not declare is
+/* Typed values of a bound scene. Asking for a key the table does not declare is
  * a programming error: it returns 0 / "" and reports LZ_EINVAL. */
 double lz_scene_real(const lz_scene *s, const char *key);
 long long lz_scene_int(const lz_scene *s, const char *key);
@@ -73,7 +85,7 @@ int lz_scene_has(const lz_scene *s, const char *key);
 int lz_scene_given(const lz_scene *s, const char *key);
 
 /* Report a cross-key problem at the key's place: "file:line: " + message. Returns
- * LZ_EINVAL. For methods' check functions. */
+ * LZ_EINVAL. For the engines' cross-key checks. */
 int lz_scene_fail(const lz_scene *s, const char *key, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 

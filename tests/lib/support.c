@@ -331,7 +331,7 @@ lz_scene *lzt_scene(const char *path, const char *overrides)
 int lzt_bind(const lz_method *m, const char *overrides)
 {
 	lz_scene *s = lzt_scene(NULL, overrides);
-	int status = lz_scene_bind(s, m);
+	int status = lz_method_bind(m, s);
 	lz_scene_free(s);
 	return status;
 }
@@ -352,7 +352,7 @@ static int lzt_run_without_plots(const lz_method *m, const lz_scene *s, lz_run *
 int lzt_run(const lz_method *m, const char *path, const char *overrides, const char *out)
 {
 	lz_scene *s = lzt_scene(path, overrides);
-	int status = lz_scene_bind(s, m);
+	int status = lz_method_bind(m, s);
 	lz_rundir d;
 	if (status == LZ_OK)
 		status = lz_rundir_begin(&d, out);

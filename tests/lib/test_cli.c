@@ -332,7 +332,7 @@ LZ_TEST(shipped_scenes_all_bind)
 		ck_assert_msg(s != NULL, "%s", lz_error_message());
 		const lz_method *m = lz_method_find(lz_scene_method(s));
 		ck_assert_msg(m != NULL, "%s names no known method", g.gl_pathv[i]);
-		ck_assert_msg(lz_scene_bind(s, m) == LZ_OK, "%s", lz_error_message());
+		ck_assert_msg(lz_method_bind(m, s) == LZ_OK, "%s", lz_error_message());
 		lz_scene_free(s);
 	}
 	globfree(&g);
@@ -352,11 +352,11 @@ LZ_TEST(scenes_readme_lists_every_key)
 		snprintf(row, sizeof row, "### %s", all[i]->name);
 		ck_assert_msg(strstr(text, row) != NULL, "datasets/scenes/README.md has no "
 		              "section '%s'", row);
-		for (size_t k = 0; k < all[i]->nkeys; k++) {
-			snprintf(row, sizeof row, "\n| %s ", all[i]->keys[k].name);
+		for (size_t k = 0; k < all[i]->keys.n; k++) {
+			snprintf(row, sizeof row, "\n| %s ", all[i]->keys.key[k].name);
 			ck_assert_msg(strstr(text, row) != NULL, "datasets/scenes/README.md does not "
 			              "list key '%s' of method %s: paste `lz help %s` into it",
-			              all[i]->keys[k].name, all[i]->name, all[i]->name);
+			              all[i]->keys.key[k].name, all[i]->name, all[i]->name);
 		}
 	}
 	free(text);
