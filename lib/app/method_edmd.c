@@ -41,51 +41,66 @@ enum { WALLS_NONE, WALLS_X, WALLS_BOX };  /* the order of the walls choices */
 #define PROGRESS_EVENTS 256   /* events between progress updates (on a terminal) */
 
 static const lz_key keys[] = {
-	{"dim", LZ_KEY_INT, "3", 2, 3, 0, 0, NULL, NULL, "3: hard spheres; 2: hard disks"},
-	{"n", LZ_KEY_INT, "1000", 1, 1e9, 0, 0, NULL, NULL,
-	 "particles, any number (a lattice start fills a random subset of its sites); with "
-	 "config, the file's rows"},
-	{"packing", LZ_KEY_REAL, "0.3", 0, LZ_EDMD_CLOSE_2D, 1, 1, NULL, NULL,
-	 "packing fraction η = n·v1/L^dim (v1 = π/6, π/4), which sets the box side L; below "
-	 "close packing, 0.7405 (spheres) and 0.9069 (disks)"},
-	{"restitution", LZ_KEY_REAL, "1", 0, 1, 1, 0, NULL, NULL,
-	 "normal restitution between particles (walls are elastic); below 1 the gas cools "
-	 "(Haff's law), clusters, and may collapse"},
-	{"gravity", LZ_KEY_REAL, "0", 0, 1e6, 0, 0, NULL, "σ/τ²",
-	 "acceleration g along -x (needs walls = x or box)"},
-	{"walls", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|x|box", NULL,
-	 "hard elastic walls at x = 0 and L (x) or on every axis (box); none: periodic"},
-	{"events", LZ_KEY_REAL, "", 0, 1e9, 1, 0, NULL, "per particle",
-	 "events per particle measured, in blocks of equal events (give events or time; "
-	 "default 100)"},
-	{"time", LZ_KEY_REAL, "", 0, 1e9, 1, 0, NULL, "τ",
-	 "simulated time measured, in blocks of equal duration (give events or time)"},
-	{"equilibrate", LZ_KEY_REAL, "50", 0, 1e9, 0, 0, NULL, "per particle",
-	 "events per particle run first and discarded, elastic whatever the restitution"},
-	{"blocks", LZ_KEY_INT, "20", 2, 1e6, 0, 0, NULL, NULL,
-	 "blocks of the error bars (the standard error of the block means)"},
-	{"cells", LZ_KEY_INT, "0", 0, 1e5, 0, 0, NULL, "per side",
-	 "cells per side, each at least σ wide, >= 3 on a periodic axis; 0: automatic (about "
-	 "1.5 per particle in 2D, 8 in 3D, as many as fit when dense)"},
-	{"observe", LZ_KEY_TEXT, "pressure", 0, 0, 0, 0, NULL, NULL,
-	 "a comma list of gr, msd (pressure and the collision rate are always measured, "
-	 "from counters; pressure or none alone: nothing more)"},
-	{"gr_range", LZ_KEY_REAL, "3", 0, 1e6, 1, 0, NULL, "σ",
-	 "observe = gr: g(r) over [0, gr_range), at most L/2"},
-	{"gr_bins", LZ_KEY_INT, "150", 1, 1e6, 0, 0, NULL, NULL, "observe = gr: histogram bins"},
-	{"sample", LZ_KEY_REAL, "2", 0, 1e9, 1, 0, NULL, "per particle",
-	 "events per particle between g(r) samples, msd rows and temperature rows"},
-	{"config", LZ_KEY_TEXT, "", 0, 0, 0, 0, NULL, NULL,
-	 "file of rows x y [z] [vx vy [vz]] (σ, σ/τ; '#' comments): the initial state instead "
-	 "of a lattice, n = its rows, positions in [0, L); no velocities: Maxwell, kT = 1"},
-	{"sort", LZ_KEY_BOOL, "no", 0, 0, 0, 0, NULL, NULL,
-	 "renumber the particles cell by cell at every re-base (near in space = near in "
-	 "memory; no gain measured once the loop prefetches, lesson 05 §9); not with "
-	 "observe = msd"},
-	{"write_config", LZ_KEY_BOOL, "yes", 0, 0, 0, 0, NULL, NULL,
-	 "write config.dat (the final state, readable as config) and config.png"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
-	 "random seed of the lattice sites and the velocities"},
+	{.name = "dim", .type = LZ_KEY_INT, .def = "3", .min = 2, .max = 3,
+	 .help = "3: hard spheres; 2: hard disks"},
+	{.name = "n", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e9,
+	 .help = "particles, any number (a lattice start fills a random subset of its "
+	         "sites); with " "config, the file's rows"},
+	{.name = "packing", .type = LZ_KEY_REAL, .def = "0.3", .min = 0,
+	 .max = LZ_EDMD_CLOSE_2D, .min_open = 1, .max_open = 1,
+	 .help = "packing fraction η = n·v1/L^dim (v1 = π/6, π/4), which sets the box side "
+	         "L; below " "close packing, 0.7405 (spheres) and 0.9069 (disks)"},
+	{.name = "restitution", .type = LZ_KEY_REAL, .def = "1", .min = 0, .max = 1,
+	 .min_open = 1,
+	 .help = "normal restitution between particles (walls are elastic); below 1 the "
+	         "gas cools " "(Haff's law), clusters, and may collapse"},
+	{.name = "gravity", .type = LZ_KEY_REAL, .def = "0", .max = 1e6, .unit = "σ/τ²",
+	 .help = "acceleration g along -x (needs walls = x or box)"},
+	{.name = "walls", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|x|box",
+	 .help = "hard elastic walls at x = 0 and L (x) or on every axis (box); none: "
+	         "periodic"},
+	{.name = "events", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e9, .min_open = 1,
+	 .unit = "per particle",
+	 .help = "events per particle measured, in blocks of equal events (give events or "
+	         "time; " "default 100)"},
+	{.name = "time", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e9, .min_open = 1,
+	 .unit = "τ",
+	 .help = "simulated time measured, in blocks of equal duration (give events or time)"},
+	{.name = "equilibrate", .type = LZ_KEY_REAL, .def = "50", .max = 1e9,
+	 .unit = "per particle",
+	 .help = "events per particle run first and discarded, elastic whatever the "
+	         "restitution"},
+	{.name = "blocks", .type = LZ_KEY_INT, .def = "20", .min = 2, .max = 1e6,
+	 .help = "blocks of the error bars (the standard error of the block means)"},
+	{.name = "cells", .type = LZ_KEY_INT, .def = "0", .max = 1e5, .unit = "per side",
+	 .help = "cells per side, each at least σ wide, >= 3 on a periodic axis; 0: "
+	         "automatic (about "
+	         "1.5 per particle in 2D, 8 in 3D, as many as fit when dense)"},
+	{.name = "observe", .type = LZ_KEY_TEXT, .def = "pressure",
+	 .help = "a comma list of gr, msd (pressure and the collision rate are always "
+	         "measured, " "from counters; pressure or none alone: nothing more)"},
+	{.name = "gr_range", .type = LZ_KEY_REAL, .def = "3", .min = 0, .max = 1e6,
+	 .min_open = 1, .unit = "σ",
+	 .help = "observe = gr: g(r) over [0, gr_range), at most L/2"},
+	{.name = "gr_bins", .type = LZ_KEY_INT, .def = "150", .min = 1, .max = 1e6,
+	 .help = "observe = gr: histogram bins"},
+	{.name = "sample", .type = LZ_KEY_REAL, .def = "2", .min = 0, .max = 1e9, .min_open = 1,
+	 .unit = "per particle",
+	 .help = "events per particle between g(r) samples, msd rows and temperature rows"},
+	{.name = "config", .type = LZ_KEY_TEXT, .def = "",
+	 .help = "file of rows x y [z] [vx vy [vz]] (σ, σ/τ; '#' comments): the initial "
+	         "state instead "
+	         "of a lattice, n = its rows, positions in [0, L); no velocities: Maxwell, "
+	         "kT = 1"},
+	{.name = "sort", .type = LZ_KEY_BOOL, .def = "no",
+	 .help = "renumber the particles cell by cell at every re-base (near in space = "
+	         "near in "
+	         "memory; no gain measured once the loop prefetches, lesson 05 §9); not "
+	         "with " "observe = msd"},
+	{.name = "write_config", .type = LZ_KEY_BOOL, .def = "yes",
+	 .help = "write config.dat (the final state, readable as config) and config.png"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
+	 .help = "random seed of the lattice sites and the velocities"},
 };
 
 /* ---- the scene ---- */
@@ -233,7 +248,7 @@ static int config_read(const char *path, int dim, config *c)
 /* ---- the system ---- */
 
 /* The particles: the config file's rows, else n. */
-static int scene_n(const lz_scene *s, const config *c, size_t *n)
+static int particles_of(const lz_scene *s, const config *c, size_t *n)
 {
 	if (!lz_scene_has(s, "config")) {
 		*n = (size_t)lz_scene_int(s, "n");
@@ -333,7 +348,7 @@ static int check(const lz_scene *s)
 	if (lz_scene_has(s, "config") && config_read(lz_scene_text(s, "config"), dim, &c))
 		return lz_scene_fail(s, "config", "%s", lz_error_message());
 	size_t n = 0;
-	status = scene_n(s, &c, &n);
+	status = particles_of(s, &c, &n);
 	lz_edmd *e = status == LZ_OK ? scene_system(s, n) : NULL;
 	if (status == LZ_OK && !e)
 		status = LZ_EINVAL;
@@ -872,7 +887,7 @@ static int run(const lz_scene *s, lz_run *run)
 	if (lz_scene_has(s, "config"))
 		status = config_read(lz_scene_text(s, "config"), (int)lz_scene_int(s, "dim"), &c);
 	if (status == LZ_OK)
-		status = scene_n(s, &c, &n);
+		status = particles_of(s, &c, &n);
 	config_free(&c);
 	lz_edmd *e = status == LZ_OK ? scene_system(s, n) : NULL;
 	if (status == LZ_OK && !e)

@@ -22,6 +22,7 @@
 #include "lz/error.h"
 #include "lz/field.h"
 #include "lz/lattice.h"
+#include "lattice_scene.h"
 #include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
@@ -33,71 +34,68 @@ enum { MOTION_NONE, MOTION_WALK, MOTION_BALLISTIC };
 enum { NBLOCKS = 10 };  /* blocks of the energy's error bar */
 
 static const lz_key keys[] = {
-	{"lattice", LZ_KEY_ENUM, "square", 0, 0, 0, 0,
-	 "square|square8|triangular|cubic|cubic18|cubic26", NULL,
-	 "square (4 moves) and square8 (+4 diagonal) share one metric, as do cubic (6), "
-	 "cubic18 (+12 edges) and cubic26 (+8 corners); triangular: 6 moves, stored sheared"},
-	{"size", LZ_KEY_INT, "256", 2, 32768, 0, 0, NULL, "sites",
-	 "box side L, a power of two, periodic; the field is L^dim bytes (L <= 32768 in 2D, "
-	 "1024 in 3D)"},
-	{"radius", LZ_KEY_REAL, "4", 0, 8192, 1, 0, NULL, "lattice units",
-	 "particle radius R; the excluded disk of radius σ = 2R must fit in the box: 4R <= L"},
-	{"n", LZ_KEY_INT, "", 1, 1e9, 0, 0, NULL, NULL,
-	 "number of particles placed by random sequential adsorption (give one of n, "
-	 "coverage and fill)"},
-	{"coverage", LZ_KEY_REAL, "", 0, LZ_WALK_CLOSE_2D, 1, 0, NULL, NULL,
-	 "target coverage θ = N·πR²/(L²·cell), 4/3 πR³·N/L³ in 3D, n rounded from it; "
-	 "adsorption jams near 0.547 (disks) and 0.384 (spheres)"},
-	{"fill", LZ_KEY_ENUM, "", 0, 0, 0, 0, "jam", NULL,
-	 "jam: adsorb until no free site is left (exact jamming, counted by the field)"},
-	{"motion", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|walk|ballistic", NULL,
-	 "after the placement: none; walk: a new random direction every trial; ballistic: "
-	 "keep it until a trial is refused"},
-	{"steps", LZ_KEY_INT, "1000", 1, 1e12, 0, 0, NULL, "sweeps",
-	 "measured sweeps, each offering every particle one trial move (with motion only)"},
-	{"equilibrate", LZ_KEY_INT, "0", 0, 1e12, 0, 0, NULL, "sweeps",
-	 "sweeps run and discarded before the measured ones (with motion only)"},
-	{"well_range", LZ_KEY_REAL, "0", 0, LZ_WELL_LAMBDA_MAX, 0, 0, NULL, "σ",
-	 "square-well range λ: energy -ε for σ <= d < λσ, Metropolis moves; 0: hard core "
-	 "only, else in (1, 3]"},
-	{"well_depth", LZ_KEY_REAL, "1", 0, 1000, 0, 0, NULL, "ε",
-	 "well depth ε, the energy unit (needs well_range)"},
-	{"temperature", LZ_KEY_REAL, "1", 0, 1000, 1, 0, NULL, "ε/k",
-	 "kT of the Metropolis moves (needs well_range)"},
-	{"sample", LZ_KEY_INT, "10", 1, 1e12, 0, 0, NULL, "sweeps",
-	 "record the energy every k sweeps into energy.dat and its mean (needs well_range)"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
-	 "random seed of the adsorption and the moves"},
+	LZ_KEY_LATTICE,
+	{.name = "size", .type = LZ_KEY_INT, .def = "256", .min = 2, .max = 32768,
+	 .unit = "sites",
+	 .help = "box side L, a power of two, periodic; the field is L^dim bytes (L <= "
+	         "32768 in 2D, " "1024 in 3D)"},
+	{.name = "radius", .type = LZ_KEY_REAL, .def = "4", .min = 0, .max = 8192,
+	 .min_open = 1, .unit = "lattice units",
+	 .help = "particle radius R; the excluded disk of radius σ = 2R must fit in the "
+	         "box: 4R <= L"},
+	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9,
+	 .help = "number of particles placed by random sequential adsorption (give one of "
+	         "n, " "coverage and fill)"},
+	{.name = "coverage", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = LZ_WALK_CLOSE_2D,
+	 .min_open = 1,
+	 .help = "target coverage θ = N·πR²/(L²·cell), 4/3 πR³·N/L³ in 3D, n rounded from "
+	         "it; " "adsorption jams near 0.547 (disks) and 0.384 (spheres)"},
+	{.name = "fill", .type = LZ_KEY_ENUM, .def = "", .choices = "jam",
+	 .help = "jam: adsorb until no free site is left (exact jamming, counted by the "
+	         "field)"},
+	{.name = "motion", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|walk|ballistic",
+	 .help = "after the placement: none; walk: a new random direction every trial; "
+	         "ballistic: " "keep it until a trial is refused"},
+	{.name = "steps", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e12,
+	 .unit = "sweeps",
+	 .help = "measured sweeps, each offering every particle one trial move (with "
+	         "motion only)"},
+	{.name = "equilibrate", .type = LZ_KEY_INT, .def = "0", .max = 1e12, .unit = "sweeps",
+	 .help = "sweeps run and discarded before the measured ones (with motion only)"},
+	{.name = "well_range", .type = LZ_KEY_REAL, .def = "0", .max = LZ_WELL_LAMBDA_MAX,
+	 .unit = "σ",
+	 .help = "square-well range λ: energy -ε for σ <= d < λσ, Metropolis moves; 0: "
+	         "hard core " "only, else in (1, 3]"},
+	{.name = "well_depth", .type = LZ_KEY_REAL, .def = "1", .max = 1000, .unit = "ε",
+	 .help = "well depth ε, the energy unit (needs well_range)"},
+	{.name = "temperature", .type = LZ_KEY_REAL, .def = "1", .min = 0, .max = 1000,
+	 .min_open = 1, .unit = "ε/k", .help = "kT of the Metropolis moves (needs well_range)"},
+	{.name = "sample", .type = LZ_KEY_INT, .def = "10", .min = 1, .max = 1e12,
+	 .unit = "sweeps",
+	 .help = "record the energy every k sweeps into energy.dat and its mean (needs "
+	         "well_range)"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
+	 .help = "random seed of the adsorption and the moves"},
 };
 
 /* ---- the scene ---- */
 
-/* The lattice: the choices above are in the order of lz_lattice_kind. */
-static lz_lattice_kind scene_kind(const lz_scene *s)
-{
-	return (lz_lattice_kind)lz_scene_enum(s, "lattice");
-}
-
 static int scene_dim(const lz_scene *s)
 {
-	return lz_lattice_dim(scene_kind(s));
+	return lz_lattice_dim(lz_scene_lattice(s));
 }
 
 /* The coverage of n particles. */
 static double scene_coverage(const lz_scene *s, long long n)
 {
-	return lz_walk_packing(scene_kind(s), lz_scene_int(s, "size"),
+	return lz_walk_packing(lz_scene_lattice(s), lz_scene_int(s, "size"),
 	                       lz_scene_real(s, "radius"), (size_t)n);
 }
 
 /* The number of particles asked for: n, rounded from the coverage, or 0 (fill = jam). */
-static long long scene_n(const lz_scene *s)
+static long long particles(const lz_scene *s)
 {
-	if (lz_scene_has(s, "n"))
-		return lz_scene_int(s, "n");
-	if (lz_scene_has(s, "coverage"))
-		return llround(lz_scene_real(s, "coverage") / scene_coverage(s, 1));
-	return 0;
+	return lz_scene_count(s, "coverage", scene_coverage(s, 1));
 }
 
 /* The key that sets the number of particles. */
@@ -114,7 +112,7 @@ static int check_box(const lz_scene *s, lz_field **f)
 	double sites = pow((double)side, scene_dim(s));
 	const char *key = (side & (side - 1)) != 0 || sites > (double)LZ_FIELD_SITES_MAX
 	                  ? "size" : "radius";
-	*f = lz_field_alloc(scene_kind(s), side, lz_scene_real(s, "radius"));
+	*f = lz_field_alloc(lz_scene_lattice(s), side, lz_scene_real(s, "radius"));
 	return *f ? LZ_OK : lz_scene_fail(s, key, "%s", lz_error_message());
 }
 
@@ -128,7 +126,7 @@ static int check_count(const lz_scene *s)
 		                                                           : "none given");
 	if (lz_scene_has(s, "fill"))
 		return LZ_OK;
-	long long n = scene_n(s);
+	long long n = particles(s);
 	int dim = scene_dim(s);
 	double close = dim == 2 ? LZ_WALK_CLOSE_2D : LZ_WALK_CLOSE_3D, theta = scene_coverage(s, n);
 	if (n < 1)
@@ -255,7 +253,7 @@ static void state_free(state *st)
  * the box jams before reaching is an error, not a silent shortfall. */
 static int place(const lz_scene *s, state *st)
 {
-	size_t target = (size_t)scene_n(s);
+	size_t target = (size_t)particles(s);
 	double t0 = lz_cpu_now();
 	int status = lz_field_rsa(st->f, st->rng->gsl, target, &st->jammed);
 	st->insert_s = lz_cpu_now() - t0;
@@ -303,7 +301,7 @@ static int setup(const lz_scene *s, state *st, const lz_run *run)
 	st->rng = lz_rng_alloc(NULL, lz_scene_seed(s, "seed"));
 	if (!st->rng)
 		return LZ_ENOMEM;
-	st->f = lz_field_alloc(scene_kind(s), lz_scene_int(s, "size"), lz_scene_real(s, "radius"));
+	st->f = lz_field_alloc(lz_scene_lattice(s), lz_scene_int(s, "size"), lz_scene_real(s, "radius"));
 	if (!st->f)
 		return LZ_EINVAL;
 	int status = place(s, st);

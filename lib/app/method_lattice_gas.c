@@ -46,39 +46,47 @@ enum { DEFAULT_ROWS = 500, ANGLES = 24 };
 #define FIT_SKIP 0.05
 
 static const lz_key keys[] = {
-	{"model", LZ_KEY_ENUM, "fhp", 0, 0, 0, 0, "hpp|fhp", NULL,
-	 "HPP (square lattice, 4 directions) or FHP (triangular, 6 directions, 2-, 3- and "
-	 "4-body collisions, particle-hole symmetric)"},
-	{"size", LZ_KEY_INT, "256", 2, LZ_LGAS_SIDE_MAX, 0, 0, NULL, "sites",
-	 "side L of the periodic L×L lattice, a power of two"},
-	{"density", LZ_KEY_REAL, "0.2", 0, 1, 1, 1, NULL, "per link",
-	 "mean occupation of a link (site, direction) d; the particle-hole symmetric FHP has "
-	 "its smallest viscosity at 1/2"},
-	{"steps", LZ_KEY_INT, "1000", 1, 1e9, 0, 0, NULL, NULL, "number of time steps"},
-	{"init", LZ_KEY_ENUM, "uniform", 0, 0, 0, 0, "uniform|shear-wave|pulse|flow", NULL,
-	 "initial state: gas at rest; shear wave u_x(y) = amplitude·sin(2π y/L) (viscosity); "
-	 "density pulse of radius L/8 at the centre (front anisotropy); uniform flow "
-	 "u_x = amplitude"},
-	{"amplitude", LZ_KEY_REAL, "0.1", -10, 10, 1, 1, NULL, NULL,
-	 "shear-wave, flow: speed u0 in lattice units per step, abs(u0) <= 1/2 and "
-	 "d (1 + 2 abs(u0)) < 1; pulse: relative density excess a, d(1 + a) < 1"},
-	{"obstacle", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|plate|disk", NULL,
-	 "bounce-back walls centred at x = L/4 on the middle row: a plate across the flow "
-	 "(one site per row) or a filled disk; walls take momentum, so only mass is then "
-	 "checked exactly"},
-	{"obstacle_size", LZ_KEY_INT, "", 1, LZ_LGAS_SIDE_MAX / 2, 0, 0, NULL, "sites",
-	 "plate: rows it spans (length size·√3/2 on FHP); disk: diameter; in [1, L/2] "
-	 "(default L/8)"},
-	{"block", LZ_KEY_INT, "8", 1, LZ_LGAS_SIDE_MAX, 0, 0, NULL, "sites",
-	 "coarse-graining block of density.dat and velocity.dat: block rows by block sites, "
-	 "a power of two up to L"},
-	{"average", LZ_KEY_INT, "", 1, 1e9, 0, 0, NULL, NULL,
-	 "flow or obstacle: average the velocity field over the last k steps (default "
-	 "steps/4)"},
-	{"sample", LZ_KEY_INT, "", 1, 1e9, 0, 0, NULL, NULL,
-	 "record the shear-wave amplitude every k steps (default: about 500 rows)"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
-	 "random seed of the initial state and of the collision chiralities"},
+	{.name = "model", .type = LZ_KEY_ENUM, .def = "fhp", .choices = "hpp|fhp",
+	 .help = "HPP (square lattice, 4 directions) or FHP (triangular, 6 directions, 2-, "
+	         "3- and " "4-body collisions, particle-hole symmetric)"},
+	{.name = "size", .type = LZ_KEY_INT, .def = "256", .min = 2, .max = LZ_LGAS_SIDE_MAX,
+	 .unit = "sites", .help = "side L of the periodic L×L lattice, a power of two"},
+	{.name = "density", .type = LZ_KEY_REAL, .def = "0.2", .min = 0, .max = 1,
+	 .min_open = 1, .max_open = 1, .unit = "per link",
+	 .help = "mean occupation of a link (site, direction) d; the particle-hole "
+	         "symmetric FHP has " "its smallest viscosity at 1/2"},
+	{.name = "steps", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e9,
+	 .help = "number of time steps"},
+	{.name = "init", .type = LZ_KEY_ENUM, .def = "uniform",
+	 .choices = "uniform|shear-wave|pulse|flow",
+	 .help = "initial state: gas at rest; shear wave u_x(y) = amplitude·sin(2π y/L) "
+	         "(viscosity); "
+	         "density pulse of radius L/8 at the centre (front anisotropy); uniform "
+	         "flow " "u_x = amplitude"},
+	{.name = "amplitude", .type = LZ_KEY_REAL, .def = "0.1", .min = -10, .max = 10,
+	 .min_open = 1, .max_open = 1,
+	 .help = "shear-wave, flow: speed u0 in lattice units per step, abs(u0) <= 1/2 and "
+	         "d (1 + 2 abs(u0)) < 1; pulse: relative density excess a, d(1 + a) < 1"},
+	{.name = "obstacle", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|plate|disk",
+	 .help = "bounce-back walls centred at x = L/4 on the middle row: a plate across "
+	         "the flow "
+	         "(one site per row) or a filled disk; walls take momentum, so only mass "
+	         "is then " "checked exactly"},
+	{.name = "obstacle_size", .type = LZ_KEY_INT, .def = "", .min = 1,
+	 .max = LZ_LGAS_SIDE_MAX / 2, .unit = "sites",
+	 .help = "plate: rows it spans (length size·√3/2 on FHP); disk: diameter; in [1, "
+	         "L/2] " "(default L/8)"},
+	{.name = "block", .type = LZ_KEY_INT, .def = "8", .min = 1, .max = LZ_LGAS_SIDE_MAX,
+	 .unit = "sites",
+	 .help = "coarse-graining block of density.dat and velocity.dat: block rows by "
+	         "block sites, " "a power of two up to L"},
+	{.name = "average", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9,
+	 .help = "flow or obstacle: average the velocity field over the last k steps "
+	         "(default " "steps/4)"},
+	{.name = "sample", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9,
+	 .help = "record the shear-wave amplitude every k steps (default: about 500 rows)"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
+	 .help = "random seed of the initial state and of the collision chiralities"},
 };
 
 /* The velocity field is written for a flow and around any obstacle. */

@@ -16,6 +16,7 @@
 #include <stdio.h>
 
 #include "lz/error.h"
+#include "lattice_scene.h"
 #include "method.h"
 #include "lz/nwalk.h"
 #include "lz/progress.h"
@@ -26,63 +27,60 @@ enum { ORDER_NONE, ORDER_ROW, ORDER_MORTON };
 enum { STORE_LINKED, STORE_ARRAY };
 
 static const lz_key keys[] = {
-	{"driver", LZ_KEY_ENUM, NULL, 0, 0, 0, 0, "nl|fnl|cl|fr", NULL,
-	 "nl: Verlet lists rebuilt from all pairs (O(N²) per refresh); fnl: refreshed from "
-	 "the neighbours' lists (O(N)); cl: cell lists, a step tested against the 3^dim "
-	 "cells around; fr: the field, one look-up per step"},
-	{"lattice", LZ_KEY_ENUM, "square", 0, 0, 0, 0,
-	 "square|square8|triangular|cubic|cubic18|cubic26", NULL,
-	 "lattice and its steps: 4, 4+4 diagonal, 6 (sheared) in 2D; 6 faces, +12 edges, "
-	 "+8 corners in 3D"},
-	{"size", LZ_KEY_INT, "1024", 2, 32768, 0, 0, NULL, "sites",
-	 "box side L, a power of two, periodic (the placement paints an L^dim-byte field: "
-	 "L <= 1024 in 3D)"},
-	{"radius", LZ_KEY_REAL, "12", 0, 8192, 1, 0, NULL, "lattice units",
-	 "particle radius R; σ = 2R, and 4R <= L"},
-	{"n", LZ_KEY_INT, "", 1, 1e9, 0, 0, NULL, NULL,
-	 "number of particles, placed by random sequential adsorption (give n or packing)"},
-	{"packing", LZ_KEY_REAL, "", 0, LZ_WALK_CLOSE_2D, 1, 0, NULL, NULL,
-	 "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), n rounded from it; "
-	 "adsorption jams near 0.547 (2D), 0.38 (3D)"},
-	{"skin", LZ_KEY_REAL, "4", 0, 16384, 0, 0, NULL, "lattice units",
-	 "Δr > 0 (nl, fnl, cl; fr ignores it): lists hold pairs within r_l = σ + lmax + Δr, "
-	 "cl cells are at least r_l wide"},
-	{"refresh", LZ_KEY_INT, "0", 0, 1e9, 0, 0, NULL, "sweeps",
-	 "sweeps between refreshes; 0: the safe interval floor(Δr/(2 lmax)) (a skin of at "
-	 "least two steps); longer ones miss pairs (fr: no lists)"},
-	{"steps", LZ_KEY_INT, "1000", 1, 1e12, 0, 0, NULL, "sweeps",
-	 "sweeps, each offering every particle, in index order, one random step"},
-	{"cell_order", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|row|morton", NULL,
-	 "none: cells row-major, particles as placed; row, morton: cells in that order and "
-	 "the particles renumbered cell by cell (near in space = near in memory)"},
-	{"cell_store", LZ_KEY_ENUM, "linked", 0, 0, 0, 0, "linked|array", NULL,
-	 "cl: linked lists (head/next) or fixed arrays per cell (contiguous, room for twice "
-	 "the densest packing)"},
-	{"copies", LZ_KEY_INT, "2", 1, 2, 0, 0, NULL, NULL,
-	 "fnl: 2 = source and target lists; 1 = rows rewritten in place, which loses "
-	 "particles (thesis fig. 2.7; for the demonstration)"},
-	{"audit", LZ_KEY_BOOL, "yes", 0, 0, 0, 0, NULL, NULL,
-	 "before every refresh, count the pairs closer than r_c = σ + lmax that the driver "
-	 "cannot see (timed apart)"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
-	 "random seed of the placement and the steps"},
+	{.name = "driver", .type = LZ_KEY_ENUM, .choices = "nl|fnl|cl|fr",
+	 .help = "nl: Verlet lists rebuilt from all pairs (O(N²) per refresh); fnl: "
+	         "refreshed from "
+	         "the neighbours' lists (O(N)); cl: cell lists, a step tested against the "
+	         "3^dim " "cells around; fr: the field, one look-up per step"},
+	LZ_KEY_LATTICE,
+	{.name = "size", .type = LZ_KEY_INT, .def = "1024", .min = 2, .max = 32768,
+	 .unit = "sites",
+	 .help = "box side L, a power of two, periodic (the placement paints an L^dim-byte "
+	         "field: " "L <= 1024 in 3D)"},
+	{.name = "radius", .type = LZ_KEY_REAL, .def = "12", .min = 0, .max = 8192,
+	 .min_open = 1, .unit = "lattice units",
+	 .help = "particle radius R; σ = 2R, and 4R <= L"},
+	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9,
+	 .help = "number of particles, placed by random sequential adsorption (give n or "
+	         "packing)"},
+	{.name = "packing", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = LZ_WALK_CLOSE_2D,
+	 .min_open = 1,
+	 .help = "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), n rounded from "
+	         "it; " "adsorption jams near 0.547 (2D), 0.38 (3D)"},
+	{.name = "skin", .type = LZ_KEY_REAL, .def = "4", .max = 16384, .unit = "lattice units",
+	 .help = "Δr > 0 (nl, fnl, cl; fr ignores it): lists hold pairs within r_l = σ + "
+	         "lmax + Δr, " "cl cells are at least r_l wide"},
+	{.name = "refresh", .type = LZ_KEY_INT, .def = "0", .max = 1e9, .unit = "sweeps",
+	 .help = "sweeps between refreshes; 0: the safe interval floor(Δr/(2 lmax)) (a "
+	         "skin of at " "least two steps); longer ones miss pairs (fr: no lists)"},
+	{.name = "steps", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e12,
+	 .unit = "sweeps",
+	 .help = "sweeps, each offering every particle, in index order, one random step"},
+	{.name = "cell_order", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|row|morton",
+	 .help = "none: cells row-major, particles as placed; row, morton: cells in that "
+	         "order and "
+	         "the particles renumbered cell by cell (near in space = near in memory)"},
+	{.name = "cell_store", .type = LZ_KEY_ENUM, .def = "linked", .choices = "linked|array",
+	 .help = "cl: linked lists (head/next) or fixed arrays per cell (contiguous, room "
+	         "for twice " "the densest packing)"},
+	{.name = "copies", .type = LZ_KEY_INT, .def = "2", .min = 1, .max = 2,
+	 .help = "fnl: 2 = source and target lists; 1 = rows rewritten in place, which "
+	         "loses " "particles (thesis fig. 2.7; for the demonstration)"},
+	{.name = "audit", .type = LZ_KEY_BOOL, .def = "yes",
+	 .help = "before every refresh, count the pairs closer than r_c = σ + lmax that "
+	         "the driver " "cannot see (timed apart)"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
+	 .help = "random seed of the placement and the steps"},
 };
 
 /* ---- the scene ---- */
 
-static lz_lattice_kind scene_kind(const lz_scene *s)
-{
-	return (lz_lattice_kind)lz_scene_enum(s, "lattice");
-}
-
 /* The particles asked for: n, or rounded from the packing. */
-static long long scene_n(const lz_scene *s)
+static long long particles(const lz_scene *s)
 {
-	if (lz_scene_has(s, "n"))
-		return lz_scene_int(s, "n");
-	double one = lz_walk_packing(scene_kind(s), lz_scene_int(s, "size"),
+	double one = lz_walk_packing(lz_scene_lattice(s), lz_scene_int(s, "size"),
 	                             lz_scene_real(s, "radius"), 1);
-	return llround(lz_scene_real(s, "packing") / one);
+	return lz_scene_count(s, "packing", one);
 }
 
 static const char *count_key(const lz_scene *s)
@@ -95,10 +93,10 @@ static lz_nwalk_params scene_params(const lz_scene *s)
 	int order = lz_scene_enum(s, "cell_order");
 	lz_nwalk_params p = {
 		.driver = (lz_nwalk_driver)lz_scene_enum(s, "driver"),
-		.kind = scene_kind(s),
+		.kind = lz_scene_lattice(s),
 		.side = lz_scene_int(s, "size"),
 		.radius = lz_scene_real(s, "radius"),
-		.n = (size_t)scene_n(s),
+		.n = (size_t)particles(s),
 		.skin = lz_scene_real(s, "skin"),
 		.refresh = (int)lz_scene_int(s, "refresh"),
 		.order = order == ORDER_MORTON ? LZ_CELLS_MORTON : LZ_CELLS_ROW,
@@ -116,7 +114,7 @@ static int check_count(const lz_scene *s)
 	if (given != 1)
 		return lz_scene_fail(s, given ? "packing" : "radius", "give exactly one of n and "
 		                     "packing (%s)", given ? "both given" : "none given");
-	if (scene_n(s) < 1)
+	if (particles(s) < 1)
 		return lz_scene_fail(s, "packing", "packing = %g is less than one particle of "
 		                     "radius %g in a box of side %lld", lz_scene_real(s, "packing"),
 		                     lz_scene_real(s, "radius"), lz_scene_int(s, "size"));

@@ -31,39 +31,49 @@ enum { DEFAULT_ROWS = 1000, NBLOCKS = 10 };
 #define MELTING 0.2
 
 static const lz_key keys[] = {
-	{"potential", LZ_KEY_ENUM, "harmonic", 0, 0, 0, 0, "harmonic|lj", NULL,
-	 "force law: independent harmonic oscillators, or Lennard-Jones (cut and shifted, "
-	 "periodic box, all pairs)"},
-	{"integrator", LZ_KEY_ENUM, "velocity-verlet", 0, 0, 0, 0,
-	 "euler|symplectic-euler|verlet|velocity-verlet|leapfrog", NULL, "time-stepping scheme"},
-	{"dt", LZ_KEY_REAL, NULL, 0, 10, 1, 0, NULL, "τ", "time step"},
-	{"steps", LZ_KEY_INT, "", 1, 1e12, 0, 0, NULL, NULL,
-	 "number of steps (give steps or time, not both)"},
-	{"time", LZ_KEY_REAL, "", 0, 1e12, 1, 0, NULL, "τ",
-	 "duration, rounded to whole steps (give steps or time, not both)"},
-	{"omega", LZ_KEY_REAL, "1", 0, 1e6, 1, 0, NULL, "1/τ",
-	 "angular frequency ω of the oscillators (harmonic); stable for ω·dt < 2"},
-	{"x0", LZ_KEY_REAL, "1", -1e6, 1e6, 0, 0, NULL, "σ",
-	 "initial position of every coordinate (harmonic)"},
-	{"v0", LZ_KEY_REAL, "0", -1e6, 1e6, 0, 0, NULL, "σ/τ",
-	 "initial velocity of every coordinate (harmonic)"},
-	{"n", LZ_KEY_INT, "", 1, 1e8, 0, 0, NULL, NULL,
-	 "particles; harmonic: default 1; lj: 4m³ in 3D (default 108), 2m² in 2D (default 200)"},
-	{"dim", LZ_KEY_INT, "", 1, 3, 0, 0, NULL, NULL,
-	 "dimensions; harmonic 1..3 (default 1), lj 2..3 (default 3)"},
-	{"density", LZ_KEY_REAL, "0.8", 0, 3, 1, 0, NULL, "σ⁻ᵈ", "number density ρ (lj)"},
-	{"temperature", LZ_KEY_REAL, "1", 0, 100, 0, 0, NULL, "ε/k_B",
-	 "temperature of the Maxwell velocities and of the equilibration (lj)"},
-	{"equilibrate", LZ_KEY_INT, "0", 0, 1e9, 0, 0, NULL, NULL,
-	 "lj: steps of velocity Verlet with the velocities rescaled to `temperature` before "
-	 "the measured NVE run (a lattice start melts and cools by about half otherwise)"},
-	{"rc", LZ_KEY_REAL, "2.5", 0, 100, 1, 0, NULL, "σ", "cutoff (lj); at most L/2"},
-	{"precision", LZ_KEY_ENUM, "double", 0, 0, 0, 0, "double|float", NULL,
-	 "float: round the state (and the LJ forces) to single precision after every step"},
-	{"sample", LZ_KEY_INT, "", 1, 1e12, 0, 0, NULL, NULL,
-	 "write an energy row every k steps (default: about 1000 rows)"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
-	 "random seed of the Maxwell velocities (lj)"},
+	{.name = "potential", .type = LZ_KEY_ENUM, .def = "harmonic", .choices = "harmonic|lj",
+	 .help = "force law: independent harmonic oscillators, or Lennard-Jones (cut and "
+	         "shifted, " "periodic box, all pairs)"},
+	{.name = "integrator", .type = LZ_KEY_ENUM, .def = "velocity-verlet",
+	 .choices = "euler|symplectic-euler|verlet|velocity-verlet|leapfrog",
+	 .help = "time-stepping scheme"},
+	{.name = "dt", .type = LZ_KEY_REAL, .min = 0, .max = 10, .min_open = 1, .unit = "τ",
+	 .help = "time step"},
+	{.name = "steps", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e12,
+	 .help = "number of steps (give steps or time, not both)"},
+	{.name = "time", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e12, .min_open = 1,
+	 .unit = "τ",
+	 .help = "duration, rounded to whole steps (give steps or time, not both)"},
+	{.name = "omega", .type = LZ_KEY_REAL, .def = "1", .min = 0, .max = 1e6, .min_open = 1,
+	 .unit = "1/τ",
+	 .help = "angular frequency ω of the oscillators (harmonic); stable for ω·dt < 2"},
+	{.name = "x0", .type = LZ_KEY_REAL, .def = "1", .min = -1e6, .max = 1e6, .unit = "σ",
+	 .help = "initial position of every coordinate (harmonic)"},
+	{.name = "v0", .type = LZ_KEY_REAL, .def = "0", .min = -1e6, .max = 1e6, .unit = "σ/τ",
+	 .help = "initial velocity of every coordinate (harmonic)"},
+	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e8,
+	 .help = "particles; harmonic: default 1; lj: 4m³ in 3D (default 108), 2m² in 2D "
+	         "(default 200)"},
+	{.name = "dim", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 3,
+	 .help = "dimensions; harmonic 1..3 (default 1), lj 2..3 (default 3)"},
+	{.name = "density", .type = LZ_KEY_REAL, .def = "0.8", .min = 0, .max = 3,
+	 .min_open = 1, .unit = "σ⁻ᵈ", .help = "number density ρ (lj)"},
+	{.name = "temperature", .type = LZ_KEY_REAL, .def = "1", .max = 100, .unit = "ε/k_B",
+	 .help = "temperature of the Maxwell velocities and of the equilibration (lj)"},
+	{.name = "equilibrate", .type = LZ_KEY_INT, .def = "0", .max = 1e9,
+	 .help = "lj: steps of velocity Verlet with the velocities rescaled to "
+	         "`temperature` before "
+	         "the measured NVE run (a lattice start melts and cools by about half "
+	         "otherwise)"},
+	{.name = "rc", .type = LZ_KEY_REAL, .def = "2.5", .min = 0, .max = 100, .min_open = 1,
+	 .unit = "σ", .help = "cutoff (lj); at most L/2"},
+	{.name = "precision", .type = LZ_KEY_ENUM, .def = "double", .choices = "double|float",
+	 .help = "float: round the state (and the LJ forces) to single precision after "
+	         "every step"},
+	{.name = "sample", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e12,
+	 .help = "write an energy row every k steps (default: about 1000 rows)"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
+	 .help = "random seed of the Maxwell velocities (lj)"},
 };
 
 /* ---- the scene: defaults that depend on the potential, and cross-key checks ---- */
@@ -75,7 +85,7 @@ static int scene_dim(const lz_scene *s)
 	return lz_scene_enum(s, "potential") == LJ ? 3 : 1;
 }
 
-static size_t scene_n(const lz_scene *s)
+static size_t particles(const lz_scene *s)
 {
 	if (lz_scene_has(s, "n"))
 		return (size_t)lz_scene_int(s, "n");
@@ -97,10 +107,10 @@ static int check_lj(const lz_scene *s)
 	if (dim < 2)
 		return lz_scene_fail(s, "dim", "dim = %d: the Lennard-Jones fluid needs dim 2 or 3",
 		                     dim);
-	if (lz_lattice_check(scene_n(s), dim) != LZ_OK)
+	if (lz_lattice_check(particles(s), dim) != LZ_OK)
 		return lz_scene_fail(s, "n", "%s", lz_error_message());
 	lz_lj p;
-	if (lz_lj_init(&p, scene_n(s), dim, lz_scene_real(s, "density"),
+	if (lz_lj_init(&p, particles(s), dim, lz_scene_real(s, "density"),
 	               lz_scene_real(s, "rc")) != LZ_OK)
 		return lz_scene_fail(s, "rc", "%s", lz_error_message());
 	return LZ_OK;
@@ -155,7 +165,7 @@ static int has_shadow(const sim *m)
 static int init_harmonic(sim *m, const lz_scene *s)
 {
 	m->harmonic.omega = lz_scene_real(s, "omega");
-	m->md = lz_md_alloc(scene_n(s), scene_dim(s), lz_harmonic_force, &m->harmonic);
+	m->md = lz_md_alloc(particles(s), scene_dim(s), lz_harmonic_force, &m->harmonic);
 	if (!m->md)
 		return LZ_ENOMEM;
 	size_t len = m->md->n * (size_t)m->md->dim;
@@ -169,7 +179,7 @@ static int init_harmonic(sim *m, const lz_scene *s)
 
 static int init_lj(sim *m, const lz_scene *s)
 {
-	size_t n = scene_n(s);
+	size_t n = particles(s);
 	int dim = scene_dim(s);
 	int status = lz_lj_init(&m->lj, n, dim, lz_scene_real(s, "density"),
 	                        lz_scene_real(s, "rc"));

@@ -17,6 +17,7 @@
 #include "lz/error.h"
 #include "lz/gr.h"
 #include "lz/lattice.h"
+#include "lattice_scene.h"
 #include "method.h"
 #include "lz/profile.h"
 #include "lz/progress.h"
@@ -29,57 +30,53 @@ enum { WALLS_NONE, WALLS_SLIT };
 
 
 static const lz_key keys[] = {
-	{"lattice", LZ_KEY_ENUM, "square", 0, 0, 0, 0,
-	 "square|square8|triangular|cubic|cubic18|cubic26", NULL,
-	 "lattice and its moves: 4, 4+4 diagonal, 6 (sheared) neighbours in 2D; 6 faces, "
-	 "+12 edges, +8 corners in 3D"},
-	{"size", LZ_KEY_INT, "64", 2, LZ_LATTICE_SIDE_MAX, 0, 0, NULL, "sites",
-	 "box side L in lattice units, a power of two (periodic in every direction)"},
-	{"radius", LZ_KEY_REAL, "3", 0, LZ_LATTICE_SIDE_MAX / 4, 1, 0, NULL, "lattice units",
-	 "particle radius R; the diameter σ = 2R must be at most L/2"},
-	{"n", LZ_KEY_INT, "", 1, 1e7, 0, 0, NULL, NULL,
-	 "number of particles (give n or packing, not both)"},
-	{"packing", LZ_KEY_REAL, "", 0, LZ_WALK_CLOSE_2D, 1, 0, NULL, NULL,
-	 "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), of the slit N·πR²/(L·H) "
-	 "with walls = slit; n is rounded from it"},
-	{"motion", LZ_KEY_ENUM, "walk", 0, 0, 0, 0, "walk|ballistic", NULL,
-	 "walk: a new random direction every step; ballistic: keep it until a collision"},
-	{"start", LZ_KEY_ENUM, "random", 0, 0, 0, 0, "random|grid", NULL,
-	 "random: random sequential placement (jams near η = 0.55); grid: a random subset of "
-	 "a grid of spacing ceil(2R), for denser or narrow systems (equilibrate it)"},
-	{"steps", LZ_KEY_INT, "1000", 1, 1e12, 0, 0, NULL, "sweeps",
-	 "measured ensemble steps (one move offered to every particle each)"},
-	{"equilibrate", LZ_KEY_INT, "0", 0, 1e12, 0, 0, NULL, "sweeps",
-	 "sweeps run and discarded before the measured ones"},
-	{"walls", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|slit", NULL,
-	 "slit: hard walls across the last axis (y; z in 3D), slit_width apart; periodic "
-	 "along the others"},
-	{"slit_width", LZ_KEY_REAL, "", 0, LZ_LATTICE_SIDE_MAX, 1, 1, NULL, "lattice units",
-	 "distance H between the walls (Cartesian); centres keep R from both; at most L "
-	 "(L·√3/2 triangular)"},
-	{"observe", LZ_KEY_ENUM, "none", 0, 0, 0, 0, "none|gr|profile", NULL,
-	 "gr: g(r) raw and lattice-corrected into gr.dat (no walls); profile: the density "
-	 "across the last axis into profile.dat"},
-	{"sample", LZ_KEY_INT, "10", 1, 1e12, 0, 0, NULL, "sweeps",
-	 "add a configuration to g(r) or the profile every k sweeps"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL,
-	 "random seed of the placement and the moves"},
+	LZ_KEY_LATTICE,
+	{.name = "size", .type = LZ_KEY_INT, .def = "64", .min = 2, .max = LZ_LATTICE_SIDE_MAX,
+	 .unit = "sites",
+	 .help = "box side L in lattice units, a power of two (periodic in every direction)"},
+	{.name = "radius", .type = LZ_KEY_REAL, .def = "3", .min = 0,
+	 .max = LZ_LATTICE_SIDE_MAX / 4, .min_open = 1, .unit = "lattice units",
+	 .help = "particle radius R; the diameter σ = 2R must be at most L/2"},
+	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e7,
+	 .help = "number of particles (give n or packing, not both)"},
+	{.name = "packing", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = LZ_WALK_CLOSE_2D,
+	 .min_open = 1,
+	 .help = "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), of the slit "
+	         "N·πR²/(L·H) " "with walls = slit; n is rounded from it"},
+	{.name = "motion", .type = LZ_KEY_ENUM, .def = "walk", .choices = "walk|ballistic",
+	 .help = "walk: a new random direction every step; ballistic: keep it until a "
+	         "collision"},
+	{.name = "start", .type = LZ_KEY_ENUM, .def = "random", .choices = "random|grid",
+	 .help = "random: random sequential placement (jams near η = 0.55); grid: a random "
+	         "subset of "
+	         "a grid of spacing ceil(2R), for denser or narrow systems (equilibrate it)"},
+	{.name = "steps", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e12,
+	 .unit = "sweeps",
+	 .help = "measured ensemble steps (one move offered to every particle each)"},
+	{.name = "equilibrate", .type = LZ_KEY_INT, .def = "0", .max = 1e12, .unit = "sweeps",
+	 .help = "sweeps run and discarded before the measured ones"},
+	{.name = "walls", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|slit",
+	 .help = "slit: hard walls across the last axis (y; z in 3D), slit_width apart; "
+	         "periodic " "along the others"},
+	{.name = "slit_width", .type = LZ_KEY_REAL, .def = "", .min = 0,
+	 .max = LZ_LATTICE_SIDE_MAX, .min_open = 1, .max_open = 1, .unit = "lattice units",
+	 .help = "distance H between the walls (Cartesian); centres keep R from both; at "
+	         "most L " "(L·√3/2 triangular)"},
+	{.name = "observe", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|gr|profile",
+	 .help = "gr: g(r) raw and lattice-corrected into gr.dat (no walls); profile: the "
+	         "density " "across the last axis into profile.dat"},
+	{.name = "sample", .type = LZ_KEY_INT, .def = "10", .min = 1, .max = 1e12,
+	 .unit = "sweeps", .help = "add a configuration to g(r) or the profile every k sweeps"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
+	 .help = "random seed of the placement and the moves"},
 };
 
 /* ---- the scene ---- */
 
-static lz_lattice_kind scene_kind(const lz_scene *s)
-{
-	static const lz_lattice_kind kinds[] = {LZ_LATTICE_SQUARE, LZ_LATTICE_SQUARE8,
-	                                        LZ_LATTICE_TRIANGULAR, LZ_LATTICE_CUBIC,
-	                                        LZ_LATTICE_CUBIC18, LZ_LATTICE_CUBIC26};
-	return kinds[lz_scene_enum(s, "lattice")];
-}
-
 /* The packing fraction of n particles: of the box, or of the slit. */
 static double scene_packing(const lz_scene *s, long long n)
 {
-	lz_lattice_kind kind = scene_kind(s);
+	lz_lattice_kind kind = lz_scene_lattice(s);
 	long long side = lz_scene_int(s, "size");
 	double radius = lz_scene_real(s, "radius");
 	if (lz_scene_enum(s, "walls") == WALLS_SLIT)
@@ -89,11 +86,9 @@ static double scene_packing(const lz_scene *s, long long n)
 }
 
 /* n as given, or rounded from the packing fraction. */
-static long long scene_n(const lz_scene *s)
+static long long particles(const lz_scene *s)
 {
-	if (lz_scene_has(s, "n"))
-		return lz_scene_int(s, "n");
-	return llround(lz_scene_real(s, "packing") / scene_packing(s, 1));
+	return lz_scene_count(s, "packing", scene_packing(s, 1));
 }
 
 /* The walls: slit_width exactly when walls = slit, and a width lz_walk_set_slit
@@ -110,7 +105,7 @@ static int check_walls(const lz_scene *s)
 	if (lz_scene_enum(s, "observe") == OBSERVE_GR)
 		return lz_scene_fail(s, "observe", "observe = gr needs walls = none: g(r) assumes a "
 		                     "homogeneous periodic box; use observe = profile in a slit");
-	lz_walk *w = lz_walk_alloc(scene_kind(s), lz_scene_int(s, "size"),
+	lz_walk *w = lz_walk_alloc(lz_scene_lattice(s), lz_scene_int(s, "size"),
 	                           lz_scene_real(s, "radius"), 1, LZ_WALK_RANDOM);
 	int status = w ? lz_walk_set_slit(w, lz_scene_real(s, "slit_width")) : LZ_ENOMEM;
 	lz_walk_free(w);
@@ -133,8 +128,8 @@ static int check(const lz_scene *s)
 	if (has_n == has_p)
 		return lz_scene_fail(s, has_n ? "packing" : "radius", "give exactly one of n and "
 		                     "packing (%s)", has_n ? "both given" : "neither given");
-	lz_lattice_kind kind = scene_kind(s);
-	long long n = scene_n(s);
+	lz_lattice_kind kind = lz_scene_lattice(s);
+	long long n = particles(s);
 	if (n < 1)
 		return lz_scene_fail(s, "packing", "packing = %g is less than one particle of radius "
 		                     "%g in a box of side %lld", lz_scene_real(s, "packing"), radius,
@@ -332,9 +327,9 @@ static void state_free(state *st)
 /* Walkers placed (in the slit, if any) and the observer the scene asks for. */
 static int setup(const lz_scene *s, state *st)
 {
-	lz_lattice_kind kind = scene_kind(s);
+	lz_lattice_kind kind = lz_scene_lattice(s);
 	int64_t side = lz_scene_int(s, "size");
-	size_t n = (size_t)scene_n(s);
+	size_t n = (size_t)particles(s);
 	lz_walk_motion motion = lz_scene_enum(s, "motion") == 1 ? LZ_WALK_BALLISTIC
 	                                                        : LZ_WALK_RANDOM;
 	st->rng = lz_rng_alloc(NULL, lz_scene_seed(s, "seed"));
@@ -435,7 +430,7 @@ static int run(const lz_scene *s, lz_run *run)
 	int status = setup(s, &st);
 	if (status == LZ_OK)
 		status = measure(s, &st, run->quiet);
-	double eta = scene_packing(s, (long long)scene_n(s));
+	double eta = scene_packing(s, (long long)particles(s));
 	if (status == LZ_OK && st.prof && st.prof->nsamples > 0 &&
 	    !(st.rho = profile_reduced(st.w, st.prof)))
 		status = LZ_ENOMEM;

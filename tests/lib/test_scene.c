@@ -18,15 +18,21 @@
 static int test_check(const lz_scene *s);
 
 static const lz_key test_keys[] = {
-	{"potential", LZ_KEY_ENUM, NULL, 0, 0, 0, 0, "harmonic|lj", NULL, "force law"},
-	{"dt", LZ_KEY_REAL, "0.01", 0, 1, 1, 0, NULL, "τ", "time step"},
-	{"steps", LZ_KEY_INT, "1000", 1, 1e9, 0, 0, NULL, NULL, "number of steps"},
-	{"dim", LZ_KEY_INT, "2", 2, 3, 0, 0, NULL, NULL, "dimension"},
-	{"packing", LZ_KEY_REAL, "0.5", 0, 0.9069, 1, 1, NULL, NULL, "packing fraction"},
-	{"omega", LZ_KEY_REAL, "1", 0, INFINITY, 1, 1, NULL, "1/τ", "angular frequency"},
-	{"seed", LZ_KEY_SEED, "auto", 0, 0, 0, 0, NULL, NULL, "random seed"},
-	{"verbose", LZ_KEY_BOOL, "false", 0, 0, 0, 0, NULL, NULL, "chatter"},
-	{"label", LZ_KEY_TEXT, "", 0, 0, 0, 0, NULL, NULL, "a name for the plots"},
+	{.name = "potential", .type = LZ_KEY_ENUM, .choices = "harmonic|lj",
+	 .help = "force law"},
+	{.name = "dt", .type = LZ_KEY_REAL, .def = "0.01", .min = 0, .max = 1, .min_open = 1,
+	 .unit = "τ", .help = "time step"},
+	{.name = "steps", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e9,
+	 .help = "number of steps"},
+	{.name = "dim", .type = LZ_KEY_INT, .def = "2", .min = 2, .max = 3,
+	 .help = "dimension"},
+	{.name = "packing", .type = LZ_KEY_REAL, .def = "0.5", .min = 0, .max = 0.9069,
+	 .min_open = 1, .max_open = 1, .help = "packing fraction"},
+	{.name = "omega", .type = LZ_KEY_REAL, .def = "1", .min = 0, .max = INFINITY,
+	 .min_open = 1, .max_open = 1, .unit = "1/τ", .help = "angular frequency"},
+	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto", .help = "random seed"},
+	{.name = "verbose", .type = LZ_KEY_BOOL, .def = "false", .help = "chatter"},
+	{.name = "label", .type = LZ_KEY_TEXT, .def = "", .help = "a name for the plots"},
 };
 
 static const lz_method test_method = {
