@@ -40,15 +40,7 @@ typedef struct lz_method {
  * the scene is left unbound. */
 int lz_method_bind(const lz_method *m, lz_scene *s);
 
-/* ---- files the methods share (run_files.c) ---- */
-
-/* config.dat in the run directory: n particles of radius R (lattice units) centred on
- * the sites r (dim int32_t each, every coordinate in [0, L)) of a periodic box of side
- * L on lattice `kind`, one row per particle, x y [z] R in Cartesian coordinates
- * (lz_lattice_cartesian), under a header naming the columns. LZ_EIO on a write error.
- * O(n). */
-int lz_run_write_config(const lz_run *run, lz_lattice_kind kind, int32_t side, size_t n,
-                        const int32_t *r, double radius);
+/* ---- files the methods share (run_files.c; configurations: config.h) ---- */
 
 /* The gnuplot script NAME.gp opened for writing in the run directory and begun: a
  * comment line "# lz run, method METHOD: WHAT.", the pngcairo terminal of width ×
@@ -61,7 +53,7 @@ FILE *lz_run_script(const lz_run *run, const char *name, const char *method,
 int lz_run_plot(const lz_run *run, FILE *f, const char *name);
 
 /* config.gp + config.png in the run directory: the particles of config.dat (as
- * lz_run_write_config writes it) as circles — disks in 2D, in 3D the circles in which
+ * lz_config_write_lattice writes it) as circles — disks in 2D, in 3D the circles in which
  * the plane z = L/2 cuts the spheres — in the window [0, window] × [0, window · h] of a
  * box of side L (h the row spacing, lz_walk_row_spacing), under `title`. LZ_OK also
  * without gnuplot; LZ_EIO as lz_run_plot. */

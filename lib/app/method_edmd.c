@@ -16,7 +16,6 @@
  * config) and config.png, gr.dat + gr.png, msd.dat + msd.png, temperature.dat +
  * temperature.png (restitution < 1).
  */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,6 +28,7 @@
 #include "lz/edmd.h"
 #include "lz/edmd_obs.h"
 #include "lz/error.h"
+#include "config.h"
 #include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
@@ -137,118 +137,10 @@ static int scene_observe(const lz_scene *s)
 	return parse_observe(lz_scene_text(s, "observe"));
 }
 
-/* ---- the config file ---- */
-
-typedef struct {
-	size_t n;
-	int velocities;  /* the rows have velocities */
-	double *r, *v;   /* 3 per particle, z = 0 in 2D; v NULL without velocities */
-} config;
-
-static void config_free(config *c)
-{
-	free(c->r);
-	free(c->v);
-	*c = (config){0};
-}
-
-/* The numbers of one line (a '#' starts a comment) into x[0 .. 6]; their count, or -1
- * with lz_error. */
-static int config_line(const char *path, long lineno, char *line, double x[7])
-{
-	char *hash = strchr(line, '#');
-	if (hash)
-		*hash = '\0';
-	int k = 0;
-	for (char *c = line;;) {
-		while (*c == ' ' || *c == '\t' || *c == '\r' || *c == '\n')
-			c++;
-		if (!*c)
-			return k;
-		char *end;
-		errno = 0;
-		double v = strtod(c, &end);
-		if (end == c || !isfinite(v) || errno == ERANGE || (*end && !strchr(" \t\r\n", *end)))
-			return lz_error(LZ_ESYNTAX, "config file '%s', line %ld: '%.*s' is not a "
-			                "finite number", path, lineno, (int)fmin(20, strcspn(c, " \t\r\n")),
-			                c), -1;
-		if (k == 7)
-			return lz_error(LZ_ESYNTAX, "config file '%s', line %ld: more than 6 numbers",
-			                path, lineno), -1;
-		x[k++] = v;
-		c = end;
-	}
-}
-
-/* Read the rows of `path` for dimension dim. */
-static int config_read(const char *path, int dim, config *c)
-{
-	*c = (config){0};
-	FILE *f = fopen(path, "r");
-	if (!f)
-		return lz_error(LZ_EIO, "config file '%s' cannot be read: %s", path, strerror(errno));
-	char *line = NULL;
-	size_t cap = 0, room = 0;
-	long lineno = 0;
-	int cols = 0, status = LZ_OK;
-	while (status == LZ_OK && getline(&line, &cap, f) >= 0) {
-		double x[7];
-		int k = config_line(path, ++lineno, line, x);
-		if (k < 0) {
-			status = LZ_ESYNTAX;
-			break;
-		}
-		if (k == 0)
-			continue;
-		if (cols == 0) {
-			if (k != dim && k != 2 * dim) {
-				status = lz_error(LZ_ESYNTAX, "config file '%s', line %ld: %d numbers; "
-				                  "a row in %dD is x y%s (%d) or with velocities (%d)", path,
-				                  lineno, k, dim, dim == 3 ? " z" : "", dim, 2 * dim);
-				break;
-			}
-			cols = k;
-			c->velocities = k == 2 * dim;
-		} else if (k != cols) {
-			status = lz_error(LZ_ESYNTAX, "config file '%s', line %ld: %d numbers where the "
-			                  "first row had %d", path, lineno, k, cols);
-			break;
-		}
-		if (c->n == room) {
-			room = room ? 2 * room : 1024;
-			double *r = realloc(c->r, 3 * room * sizeof *r), *v = c->v;
-			if (r)
-				c->r = r;
-			if (r && c->velocities && (v = realloc(c->v, 3 * room * sizeof *v)))
-				c->v = v;
-			if (!r || (c->velocities && !v)) {
-				status = lz_error(LZ_ENOMEM, "config file '%s': no memory for %zu rows",
-				                  path, room);
-				break;
-			}
-		}
-		for (int a = 0; a < 3; a++) {
-			c->r[3 * c->n + a] = a < dim ? x[a] : 0;
-			if (c->velocities)
-				c->v[3 * c->n + a] = a < dim ? x[dim + a] : 0;
-		}
-		c->n++;
-	}
-	if (status == LZ_OK && ferror(f))
-		status = lz_error(LZ_EIO, "config file '%s': read error", path);
-	if (status == LZ_OK && c->n == 0)
-		status = lz_error(LZ_ESYNTAX, "config file '%s' has no particle rows", path);
-	free(line);
-	fclose(f);
-	if (status != LZ_OK)
-		config_free(c);
-	return status;
-}
-
 /* ---- the system ---- */
 
 /* The particles: the config file's rows, else n. */
-static int particles_of(const lz_scene *s, const config *c, size_t *n)
+static int particles_of(const lz_scene *s, const lz_config *c, size_t *n)
 {
 	if (!lz_scene_has(s, "config")) {
 		*n = (size_t)lz_scene_int(s, "n");
@@ -296,7 +188,7 @@ static lz_edmd *scene_system(const lz_scene *s, size_t n)
 
 /* Place the config file's particles (velocities from the file or Maxwell's);
  * lz_edmd_set checks the box, the walls, the numbers and the overlaps. */
-static int place_config(const lz_scene *s, lz_edmd *e, const config *c, lz_rng *rng)
+static int place_config(const lz_scene *s, lz_edmd *e, const lz_config *c, lz_rng *rng)
 {
 	double *v = c->v;
 	if (!c->velocities) {
@@ -343,9 +235,9 @@ static int check(const lz_scene *s)
 	int status = check_keys(s);
 	if (status != LZ_OK)
 		return status;
-	config c = {0};
+	lz_config c = {0};
 	int dim = (int)lz_scene_int(s, "dim");
-	if (lz_scene_has(s, "config") && config_read(lz_scene_text(s, "config"), dim, &c))
+	if (lz_scene_has(s, "config") && lz_config_read(lz_scene_text(s, "config"), dim, &c))
 		return lz_scene_fail(s, "config", "%s", lz_error_message());
 	size_t n = 0;
 	status = particles_of(s, &c, &n);
@@ -362,7 +254,7 @@ static int check(const lz_scene *s)
 		lz_rng_free(rng);
 	}
 	lz_edmd_free(e);
-	config_free(&c);
+	lz_config_free(&c);
 	return status;
 }
 
@@ -530,11 +422,11 @@ static int watch_begin(const lz_scene *s, lz_edmd *e, const lz_run *run, watch *
 static int start(const lz_scene *s, lz_edmd *e, lz_rng *rng)
 {
 	if (lz_scene_has(s, "config")) {
-		config c;
-		int status = config_read(lz_scene_text(s, "config"), e->dim, &c);
+		lz_config c;
+		int status = lz_config_read(lz_scene_text(s, "config"), e->dim, &c);
 		if (status == LZ_OK)
 			status = place_config(s, e, &c, rng);
-		config_free(&c);
+		lz_config_free(&c);
 		return status;
 	}
 	if (lz_edmd_place_lattice(e, rng) != LZ_OK)
@@ -729,42 +621,15 @@ static void summarise(const lz_scene *s, const lz_edmd *e, const watch *w,
 
 /* ---- files ---- */
 
-/* config.dat: the state at now, every digit (%.17g), so that it reads back exactly. */
+/* config.dat (lz_config_write_edmd) and its picture. */
 static int write_config(const lz_scene *s, const lz_edmd *e, const lz_run *run)
 {
-	static const char *const names[] = {"x", "y", "z", "vx", "vy", "vz"};
-	char path[4200];
-	int status = lz_rundir_file(run->dir, "config.dat", path, sizeof path);
+	char about[128];
+	snprintf(about, sizeof about, "packing %g, walls %s", lz_scene_real(s, "packing"),
+	         lz_scene_text(s, "walls"));
+	int status = lz_config_write_edmd(run, e, about);
 	if (status != LZ_OK)
 		return status;
-	FILE *f = fopen(path, "w");
-	if (!f)
-		return lz_error(LZ_EIO, "cannot write %s: %s", path, strerror(errno));
-	fprintf(f, "# the state of %zu hard %s at t = %.17g τ, box side L = %.17g σ (packing "
-	        "%g, walls %s); read it back with config = config.dat\n#", e->n,
-	        e->dim == 3 ? "spheres" : "disks", lz_edmd_time(e), e->L,
-	        lz_scene_real(s, "packing"), lz_scene_text(s, "walls"));
-	for (int k = 0; k < 2 * e->dim; k++) {
-		int a = k % e->dim;
-		fprintf(f, " %s [%s]", names[(k / e->dim) * 3 + a], k < e->dim ? "σ" : "σ/τ");
-	}
-	fputc('\n', f);
-	for (size_t i = 0; i < e->n; i++) {
-		double r[3], v[3];
-		lz_edmd_state(e, &e->p[i], e->now, r, v);
-		for (int a = 0; a < e->dim; a++) {
-			if (!e->wall[a]) {  /* round-off may leave a hair outside [0, L) */
-				r[a] -= e->L * floor(r[a] / e->L);
-				r[a] = r[a] < e->L ? r[a] : 0;
-			}
-			fprintf(f, "%.17g ", r[a]);
-		}
-		for (int a = 0; a < e->dim; a++)
-			fprintf(f, a + 1 < e->dim ? "%.17g " : "%.17g\n", v[a]);
-	}
-	int bad = ferror(f);
-	if (fclose(f) != 0 || bad)
-		return lz_error(LZ_EIO, "cannot write %s", path);
 	/* the picture: the whole box, or a corner with about PLOT_DISKS circles */
 	double shown = e->dim == 2 ? (double)e->n : (double)e->n / e->L;
 	double window = shown > PLOT_DISKS ? e->L * sqrt(PLOT_DISKS / shown) : e->L;
@@ -881,14 +746,14 @@ static int run(const lz_scene *s, lz_run *run)
 	if (!rng)
 		return LZ_ENOMEM;
 	double t0 = lz_cpu_now();
-	config c = {0};
+	lz_config c = {0};
 	size_t n = 0;
 	int status = LZ_OK;
 	if (lz_scene_has(s, "config"))
-		status = config_read(lz_scene_text(s, "config"), (int)lz_scene_int(s, "dim"), &c);
+		status = lz_config_read(lz_scene_text(s, "config"), (int)lz_scene_int(s, "dim"), &c);
 	if (status == LZ_OK)
 		status = particles_of(s, &c, &n);
-	config_free(&c);
+	lz_config_free(&c);
 	lz_edmd *e = status == LZ_OK ? scene_system(s, n) : NULL;
 	if (status == LZ_OK && !e)
 		status = LZ_EINVAL;

@@ -23,6 +23,7 @@
 #include "lz/field.h"
 #include "lz/lattice.h"
 #include "lattice_scene.h"
+#include "config.h"
 #include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
@@ -508,7 +509,7 @@ static int write_energy_plot(const lz_scene *s, const state *st, const lz_run *r
 static int write_files(const lz_scene *s, state *st, const lz_run *run)
 {
 	const lz_field *f = st->f;
-	int status = lz_run_write_config(run, f->kind, f->side, f->n, f->r, f->radius);
+	int status = lz_config_write_lattice(run, f->kind, f->side, f->n, f->r, f->radius);
 	if (status == LZ_OK && st->energy) {
 		status = lz_data_close(st->energy);
 		st->energy = NULL;

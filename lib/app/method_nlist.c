@@ -17,6 +17,7 @@
 
 #include "lz/error.h"
 #include "lattice_scene.h"
+#include "config.h"
 #include "method.h"
 #include "lz/nwalk.h"
 #include "lz/progress.h"
@@ -279,7 +280,7 @@ static int run(const lz_scene *s, lz_run *run)
 		if (overlaps > 0 && !run->quiet)
 			warn_overlaps(nw, overlaps);
 		summarise(nw, overlaps, run->summary);
-		status = lz_run_write_config(run, p.kind, (int32_t)p.side, p.n,
+		status = lz_config_write_lattice(run, p.kind, (int32_t)p.side, p.n,
 		                             lz_nwalk_positions(nw), p.radius);
 		if (status == LZ_OK)
 			status = write_plot(nw, overlaps, run);

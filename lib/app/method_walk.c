@@ -18,6 +18,7 @@
 #include "lz/gr.h"
 #include "lz/lattice.h"
 #include "lattice_scene.h"
+#include "config.h"
 #include "method.h"
 #include "lz/profile.h"
 #include "lz/progress.h"
@@ -437,7 +438,7 @@ static int run(const lz_scene *s, lz_run *run)
 	if (status == LZ_OK)
 		summarise(&st, eta, run->summary);
 	if (status == LZ_OK)
-		status = lz_run_write_config(run, st.w->box->kind, st.w->box->side, st.w->n, st.w->r,
+		status = lz_config_write_lattice(run, st.w->box->kind, st.w->box->side, st.w->n, st.w->r,
 		                             st.w->radius);
 	if (status == LZ_OK && st.g && st.g->nsamples > 0)
 		status = write_gr(st.g, 2 * st.w->radius, run);

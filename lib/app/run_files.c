@@ -1,42 +1,11 @@
-/* run_files.c — files the methods share (lz/method.h): the configuration of particles
- * on a lattice, gnuplot scripts run inside the run directory, and the picture of a
- * configuration as circles, on a lattice or off it. */
+/* run_files.c — files the methods share (method.h): gnuplot scripts run inside the run
+ * directory, and the picture of a configuration as circles, on a lattice or off it.
+ * The configurations themselves are read and written by config.c. */
 #include <stdio.h>
 
 #include "lz/error.h"
 #include "method.h"
 #include "lz/walk.h"
-
-int lz_run_write_config(const lz_run *run, lz_lattice_kind kind, int32_t side, size_t n,
-                        const int32_t *r, double radius)
-{
-	static const char *const names[] = {"x", "y", "z", "R"};
-	static const char *const names2[] = {"x", "y", "R"};
-	static const char *const units[] = {"lattice units", "lattice units", "lattice units",
-	                                    "lattice units"};
-	char path[4200];
-	int status = lz_rundir_file(run->dir, "config.dat", path, sizeof path);
-	if (status != LZ_OK)
-		return status;
-	int dim = lz_lattice_dim(kind);
-	char title[240];
-	snprintf(title, sizeof title, "configuration, %zu particles of radius %g on the %s "
-	         "lattice, periodic box of side %d (Cartesian coordinates%s)", n, radius,
-	         lz_lattice_name(kind), (int)side, kind == LZ_LATTICE_TRIANGULAR ?
-	         ": the sheared box drawn as the rectangle L × L·√3/2" : "");
-	lz_data *d = lz_data_open(path, title, dim + 1, dim == 3 ? names : names2, units);
-	if (!d)
-		return LZ_EIO;
-	for (size_t i = 0; i < n; i++) {
-		double c[3], row[4];
-		lz_lattice_cartesian(kind, side, r + i * (size_t)dim, c);
-		for (int k = 0; k < dim; k++)
-			row[k] = c[k];
-		row[dim] = radius;
-		lz_data_row(d, row);
-	}
-	return lz_data_close(d);
-}
 
 FILE *lz_run_script(const lz_run *run, const char *name, const char *method,
                     const char *what, int width, int height)
