@@ -56,12 +56,6 @@ static void totals(const lz_lgas *g, int64_t *mass, int64_t *px, int64_t *py)
 			}
 }
 
-static gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
 
 static void fill_random(lz_lgas *g, double d, gsl_rng *r)
 {
@@ -238,7 +232,7 @@ END_TEST
 LZ_TEST(propagate_returns_after_L_steps_and_keeps_walls)
 {
 	/* Free flight on a periodic ring of side L: after L steps every particle is home. */
-	gsl_rng *r = rng_new(7);
+	gsl_rng *r = lz_test_rng(7);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas *g = lz_lgas_alloc(m ? LZ_LGAS_FHP : LZ_LGAS_HPP, 16);
 		fill_random(g, 0.3, r);
@@ -308,7 +302,7 @@ static void checked_step(lz_lgas *g, const uint8_t *t, gsl_rng *r, int step, int
 
 LZ_TEST(random_gas_conserves_mass_and_momentum_exactly)
 {
-	gsl_rng *r = rng_new(2024);
+	gsl_rng *r = lz_test_rng(2024);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas_model model = m ? LZ_LGAS_FHP : LZ_LGAS_HPP;
 		lz_lgas *g = lz_lgas_alloc(model, 32);
@@ -347,7 +341,7 @@ LZ_TEST(collisions_happen_with_both_chiralities)
 {
 	/* Every site a head-on pair {0,3}: about half must turn each way, each site on its
 	 * own coin. */
-	gsl_rng *r = rng_new(99);
+	gsl_rng *r = lz_test_rng(99);
 	lz_lgas *g = lz_lgas_alloc(LZ_LGAS_FHP, 64);
 	uint8_t t[LZ_LGAS_TABLE_SIZE];
 	table_by_hand(LZ_LGAS_FHP, t);
@@ -381,7 +375,7 @@ LZ_TEST(all_holes_and_all_particles_stay)
 {
 	/* Walls too: a full wall site bounced back is still full, and an empty one empty,
 	 * so walls change nothing here, and keep their bit. */
-	gsl_rng *r = rng_new(3);
+	gsl_rng *r = lz_test_rng(3);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas_model model = m ? LZ_LGAS_FHP : LZ_LGAS_HPP;
 		unsigned full = m ? 0x3F : 0x0F;
@@ -414,7 +408,7 @@ END_TEST
 
 LZ_TEST(walls_bounce_particles_back)
 {
-	gsl_rng *r = rng_new(5);
+	gsl_rng *r = lz_test_rng(5);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas_model model = m ? LZ_LGAS_FHP : LZ_LGAS_HPP;
 		int n;

@@ -71,12 +71,6 @@ static inline int64_t bf_min_d2(lz_lattice_kind kind, int64_t L, const int32_t *
 /* (2R)² as a real number: a pair at integer d2 overlaps iff d2 < sigma². */
 static inline double bf_sigma2(double R) { return 4.0 * R * R; }
 
-static inline gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
 
 static inline lz_site rand_site(gsl_rng *rng, int dim, int64_t L)
 {

@@ -43,7 +43,7 @@ static const struct { lz_lattice_kind kind; int L; double R; } boxes[] = {
 
 LZ_TEST(field_is_the_sum_of_the_shapes)
 {
-	gsl_rng *rng = rng_new(3);
+	gsl_rng *rng = lz_test_rng(3);
 	for (size_t k = 0; k < NBOXES; k++) {
 		int L = boxes[k].L;
 		lz_field *f = bf_field_new(boxes[k].kind, L, boxes[k].R);
@@ -65,7 +65,7 @@ END_TEST
 
 LZ_TEST(field_remove_undoes_place)
 {
-	gsl_rng *rng = rng_new(5);
+	gsl_rng *rng = lz_test_rng(5);
 	for (size_t k = 0; k < NBOXES; k++) {
 		lz_field *f = bf_field_new(boxes[k].kind, boxes[k].L, boxes[k].R);
 		for (int i = 0; i < 10; i++)
@@ -108,7 +108,7 @@ END_TEST
 
 LZ_TEST(field_move_equals_remove_and_replace)
 {
-	gsl_rng *rng = rng_new(7);
+	gsl_rng *rng = lz_test_rng(7);
 	static const struct { lz_lattice_kind kind; int L; double R; } mv[] = {
 		{LZ_LATTICE_SQUARE, 16, 2.3}, {LZ_LATTICE_SQUARE8, 16, 1.5},
 		{LZ_LATTICE_SQUARE8, 8, 0.7}, {LZ_LATTICE_TRIANGULAR, 16, 2.6},
@@ -161,7 +161,7 @@ static const struct { lz_lattice_kind kind; int L; double R; size_t n; } cc[] = 
 
 LZ_TEST(field_is_free_matches_distances)
 {
-	gsl_rng *rng = rng_new(11);
+	gsl_rng *rng = lz_test_rng(11);
 	for (size_t k = 0; k < NCC; k++) {
 		lz_field *f = bf_field_new(cc[k].kind, cc[k].L, cc[k].R);
 		brute_config(f, rng, cc[k].n);
@@ -228,7 +228,7 @@ static void contact_case(lz_lattice_kind kind, double R, lz_site a, lz_site b, i
 
 LZ_TEST(field_can_move_matches_distances)
 {
-	gsl_rng *rng = rng_new(13);
+	gsl_rng *rng = lz_test_rng(13);
 	for (size_t k = 0; k < NCC; k++) {
 		lz_field *f = bf_field_new(cc[k].kind, cc[k].L, cc[k].R);
 		brute_config(f, rng, cc[k].n);
@@ -277,7 +277,7 @@ LZ_TEST(field_walk_by_moves_keeps_field_exact)
 {
 	/* Many accepted and rejected steps at a fair density: the field stays the sum of
 	 * the shapes, no pair overlaps, and particles do move. */
-	gsl_rng *rng = rng_new(13);
+	gsl_rng *rng = lz_test_rng(13);
 	static const struct { lz_lattice_kind kind; int L; double R; size_t n; } wk[] = {
 		{LZ_LATTICE_TRIANGULAR, 32, 1.5, 60}, {LZ_LATTICE_CUBIC, 8, 1, 40},
 		{LZ_LATTICE_SQUARE, 16, 0.5, 80}, {LZ_LATTICE_SQUARE8, 16, 0.7, 50},
@@ -440,7 +440,7 @@ LZ_TEST(rsa_jams_without_overlap)
 		{LZ_LATTICE_SQUARE, 32, 0.7}, {LZ_LATTICE_CUBIC, 16, 1.5},
 	};
 	for (size_t k = 0; k < sizeof rs / sizeof rs[0]; k++) {
-		gsl_rng *rng = rng_new(17 + k);
+		gsl_rng *rng = lz_test_rng(17 + k);
 		lz_field *f = bf_field_new(rs[k].kind, rs[k].L, rs[k].R);
 		rsa_in_two_legs(f, rng, 10, lz_lattice_name(f->kind));
 		lz_field_free(f);
@@ -459,7 +459,7 @@ LZ_TEST(rsa_fills_tiny_lattices_exactly)
 		{LZ_LATTICE_CUBIC, 4}, {LZ_LATTICE_CUBIC26, 2}, {LZ_LATTICE_SQUARE, 64},
 	};
 	for (size_t k = 0; k < sizeof ty / sizeof ty[0]; k++) {
-		gsl_rng *rng = rng_new(23 + k);
+		gsl_rng *rng = lz_test_rng(23 + k);
 		lz_field *f = bf_field_new(ty[k].kind, ty[k].L, 0.5);
 		size_t n = rsa_in_two_legs(f, rng, f->nsites / 2, "R = 1/2");
 		ck_assert_msg(n == f->nsites, "%s L = %d, R = 1/2: every one of the %zu sites should "
@@ -470,7 +470,7 @@ LZ_TEST(rsa_fills_tiny_lattices_exactly)
 	}
 	/* Square L = 4, R = 1: each shape is a 3 x 3 block, no two centres may be
 	 * neighbours or diagonal neighbours on the 4 x 4 torus: jamming at exactly 4. */
-	gsl_rng *rng = rng_new(29);
+	gsl_rng *rng = lz_test_rng(29);
 	for (int rep = 0; rep < 20; rep++) {
 		lz_field *f = bf_field_new(LZ_LATTICE_SQUARE, 4, 1);
 		size_t n = rsa_in_two_legs(f, rng, 1, "square L = 4, R = 1");
@@ -484,7 +484,7 @@ END_TEST
 
 LZ_TEST(rsa_stops_at_target_and_continues)
 {
-	gsl_rng *rng = rng_new(31), *twin = rng_new(0);
+	gsl_rng *rng = lz_test_rng(31), *twin = lz_test_rng(0);
 	lz_field *f = bf_field_new(LZ_LATTICE_CUBIC, 16, 1.2);
 	int jammed = rsa(f, rng, 25);
 	ck_assert_msg(f->n == 25 && jammed == 0, "RSA with target 25 in a nearly empty box "
@@ -526,7 +526,7 @@ LZ_TEST(rsa_jamming_coverage_2d)
 	/* Disks of R = 6 on a 256² square lattice: the jamming coverage should be near
 	 * the continuum value 0.547 (thesis 2.5.1: 0.539 at R = 12), within lattice
 	 * effects and the spread of one sample of ~500 disks. */
-	gsl_rng *rng = rng_new(37);
+	gsl_rng *rng = lz_test_rng(37);
 	lz_field *f = bf_field_new(LZ_LATTICE_SQUARE, 256, 6);
 	rsa_in_two_legs(f, rng, 100, "square R = 6");
 	double theta = lz_field_coverage(f);
@@ -543,7 +543,7 @@ static double rsa_density(double R, int L, int runs, unsigned long seed)
 {
 	double sum = 0;
 	for (int k = 0; k < runs; k++) {
-		gsl_rng *rng = rng_new(seed + (unsigned long)k);
+		gsl_rng *rng = lz_test_rng(seed + (unsigned long)k);
 		lz_field *f = bf_field_new(LZ_LATTICE_SQUARE, L, R);
 		size_t n = rsa_in_two_legs(f, rng, (size_t)L * (size_t)L / 16, "small disks");
 		sum += (double)n / (double)f->nsites;
@@ -621,7 +621,7 @@ LZ_TEST(rsa_picks_free_sites_uniformly)
 {
 	static const lz_site flat[] = {{0, 0, 0}, {7, 3, 0}, {3, 12, 0}, {10, 9, 0}, {15, 15, 0}};
 	static const lz_site cube[] = {{0, 0, 0}, {3, 1, 2}, {1, 3, 3}};
-	gsl_rng *rng = rng_new(41);
+	gsl_rng *rng = lz_test_rng(41);
 	uniform_case(LZ_LATTICE_SQUARE, 16, flat, 5, 4000, rng);
 	uniform_case(LZ_LATTICE_CUBIC, 4, cube, 3, 3000, rng);
 	gsl_rng_free(rng);

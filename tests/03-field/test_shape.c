@@ -174,7 +174,7 @@ END_TEST
 
 LZ_TEST(shape_heads_and_tails_are_the_set_differences)
 {
-	gsl_rng *rng = rng_new(2);
+	gsl_rng *rng = lz_test_rng(2);
 	for (size_t k = 0; k < NCASES; k++) {
 		lz_lattice_kind kind = cases[k].kind;
 		double r = cases[k].r;
@@ -263,7 +263,7 @@ LZ_TEST(shape_axis_step_gains_one_point_per_row)
 	 * thesis's fig. 2.9 disk, r = 6.1, has 13. The step itself is inside the disk
 	 * (self = 1) only for r > 1: at r = 1 it is exactly on the circle, outside. */
 	static const double radii[] = {0.5, 1, 1.5, 2, 6.1, 12.5, 24.2};
-	gsl_rng *rng = rng_new(3);
+	gsl_rng *rng = lz_test_rng(3);
 	for (size_t k = 0; k < sizeof radii / sizeof radii[0]; k++) {
 		double r = radii[k];
 		lz_shape *s = moves_of(LZ_LATTICE_SQUARE, r, rng);

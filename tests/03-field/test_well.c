@@ -124,7 +124,7 @@ LZ_TEST(well_delta_matches_pair_count)
 		{LZ_LATTICE_CUBIC, 16, 1, 1.5, 60}, {LZ_LATTICE_CUBIC26, 16, 1.2, 1.3, 40},
 		{LZ_LATTICE_SQUARE8, 8, 1, 2, 8},
 	};
-	gsl_rng *rng = rng_new(41);
+	gsl_rng *rng = lz_test_rng(41);
 	for (size_t k = 0; k < sizeof dc / sizeof dc[0]; k++) {
 		lz_field *f = bf_field_new(dc[k].kind, dc[k].L, dc[k].R);
 		/* A particle on the corner, so that steps and wells cross the boundary. */
@@ -232,7 +232,7 @@ LZ_TEST(well_walk_keeps_field_and_energy_exact)
 		{LZ_LATTICE_SQUARE8, 16, 0.5, 1.2, 60, 1, 0.7},
 		{LZ_LATTICE_CUBIC, 16, 1, 1.5, 80, 1, 1},
 	};
-	gsl_rng *rng = rng_new(43), *twin = rng_new(0);
+	gsl_rng *rng = lz_test_rng(43), *twin = lz_test_rng(0);
 	for (size_t k = 0; k < sizeof wc / sizeof wc[0]; k++) {
 		lz_field *f = bf_field_new(wc[k].kind, wc[k].L, wc[k].R);
 		brute_config(f, rng, wc[k].n);
@@ -307,7 +307,7 @@ static int try_setup(size_t k, size_t i, int d, int with_well, gsl_rng *rng, gsl
 
 LZ_TEST(try_move_refuses_hard_core_without_a_draw)
 {
-	gsl_rng *rng = rng_new(47), *twin = rng_new(0);
+	gsl_rng *rng = lz_test_rng(47), *twin = lz_test_rng(0);
 	for (size_t k = 0; k < sizeof setups / sizeof setups[0]; k++) {
 		int seen[3] = {0, 0, 0}, ndir;
 		lz_lattice_dirs(setups[k].kind, &ndir);
@@ -396,7 +396,7 @@ LZ_TEST(metropolis_acceptance_frequency)
 		{LZ_LATTICE_SQUARE8, 0.5, 1.2, {{0, 4, 0}, {1, 4, 0}}, 2, -1, 0, -1, 0.5, 1},
 	};
 	const long trials = 20000;
-	gsl_rng *rng = rng_new(53), *twin = rng_new(0);
+	gsl_rng *rng = lz_test_rng(53), *twin = lz_test_rng(0);
 	for (size_t k = 0; k < sizeof mc / sizeof mc[0]; k++) {
 		lz_field *f = bf_field_new(mc[k].kind, 16, mc[k].R);
 		lz_field *there = bf_field_new(mc[k].kind, 16, mc[k].R);
@@ -459,7 +459,7 @@ LZ_TEST(detailed_balance_two_particles)
 	static const struct { double depth, T, tol; } bc[] = {
 		{1.5, 1, 0.013}, {1, 0.5, 0.015}, {0, 1, 0.006},
 	};
-	gsl_rng *rng = rng_new(59);
+	gsl_rng *rng = lz_test_rng(59);
 	for (size_t k = 0; k < sizeof bc / sizeof bc[0]; k++) {
 		lz_field *f = bf_field_new(LZ_LATTICE_SQUARE, L, 1);
 		bf_put(f, (lz_site){0, 0, 0});

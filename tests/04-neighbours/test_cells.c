@@ -20,22 +20,9 @@
 #include "lz/cells.h"
 #include "lztest.h"
 
-/* ck_assert_msg without Check's bookkeeping of every passed assertion (a write to
- * the parent per call): the checks here run millions of times. */
-#define CHECK(cond, ...)                        \
-	do {                                    \
-		if (!(cond))                    \
-			ck_abort_msg(__VA_ARGS__); \
-	} while (0)
 
 /* ---- references and hand-made grids ---- */
 
-static gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
 
 static const char *order_name(lz_cells_order o)
 {
@@ -171,32 +158,32 @@ LZ_TEST(morton_small_cases_by_hand)
 	           {5, 3, 27}};
 	for (size_t k = 0; k < sizeof two / sizeof two[0]; k++) {
 		uint64_t got = lz_morton(2, two[k].x, two[k].y, 0);
-		CHECK(got == two[k].want, "lz_morton(2, %u, %u, 0) = %llu, expected %llu: bit b "
+		LZ_REQUIRE(got == two[k].want, "lz_morton(2, %u, %u, 0) = %llu, expected %llu: bit b "
 		              "of x goes to bit 2b of the code, bit b of y to bit 2b + 1", two[k].x,
 		              two[k].y, (unsigned long long)got, (unsigned long long)two[k].want);
 	}
 	for (uint32_t k = 0; k < 8; k++) {
 		uint32_t x = k & 1, y = k >> 1 & 1, z = k >> 2;
 		uint64_t got = lz_morton(3, x, y, z);
-		CHECK(got == k, "lz_morton(3, %u, %u, %u) = %llu, expected %u: the 8 corners of "
+		LZ_REQUIRE(got == k, "lz_morton(3, %u, %u, %u) = %llu, expected %u: the 8 corners of "
 		              "a 2x2x2 block are numbered x + 2y + 4z", x, y, z,
 		              (unsigned long long)got, k);
 	}
-	CHECK(lz_morton(3, 2, 0, 0) == 8 && lz_morton(3, 0, 2, 0) == 16 &&
+	LZ_REQUIRE(lz_morton(3, 2, 0, 0) == 8 && lz_morton(3, 0, 2, 0) == 16 &&
 	              lz_morton(3, 0, 0, 2) == 32, "lz_morton(3, ...): bit 1 of x, y, z must go to "
 	              "code bits 3, 4, 5 (got %llu, %llu, %llu for (2,0,0), (0,2,0), (0,0,2); "
 	              "expected 8, 16, 32)", (unsigned long long)lz_morton(3, 2, 0, 0),
 	              (unsigned long long)lz_morton(3, 0, 2, 0), (unsigned long long)lz_morton(3, 0, 0, 2));
 	/* The first bits past what the 32-bit recipes keep: x = 2^10 in 3D goes to bit 30,
 	 * y = 2^16 in 2D to bit 33. */
-	CHECK(lz_morton(3, 1024, 0, 0) == UINT64_C(1) << 30 &&
+	LZ_REQUIRE(lz_morton(3, 1024, 0, 0) == UINT64_C(1) << 30 &&
 	              lz_morton(2, 0, 65536, 0) == UINT64_C(1) << 33, "lz_morton(3, 1024, 0, 0) = "
 	              "%#llx and lz_morton(2, 0, 65536, 0) = %#llx, expected bit 30 and bit 33 alone: "
 	              "a 32-bit bit spread keeps only 10 bits per coordinate in 3D, 16 in 2D",
 	              (unsigned long long)lz_morton(3, 1024, 0, 0),
 	              (unsigned long long)lz_morton(2, 0, 65536, 0));
 	uint64_t got = lz_morton(2, 1, 1, 12345);
-	CHECK(got == 3, "lz_morton(2, 1, 1, 12345) = %llu, expected 3: in 2D the z "
+	LZ_REQUIRE(got == 3, "lz_morton(2, 1, 1, 12345) = %llu, expected 3: in 2D the z "
 	              "argument must be ignored", (unsigned long long)got);
 }
 END_TEST
@@ -217,7 +204,7 @@ static void check_sub_block_order(int dim, uint32_t m, int j, const int32_t *cx,
 	size_t qs = (size_t)sub[0] + m * ((size_t)sub[1] + m * (size_t)sub[2]);
 	int place = (cx[0] >> (j - 1) & 1) + 2 * (cx[1] >> (j - 1) & 1) + 4 * (cx[2] >> (j - 1) & 1);
 	uint64_t part = (uint64_t)1 << ((j - 1) * dim), want = code[qb] + (uint64_t)place * part;
-	CHECK(code[qs] == want, "%dD: the block of side %d at (%d, %d, %d) starts at code %llu, "
+	LZ_REQUIRE(code[qs] == want, "%dD: the block of side %d at (%d, %d, %d) starts at code %llu, "
 	      "so its sub-block of side %d at (%d, %d, %d), number %d in the order x, then y%s, "
 	      "should start at code %llu; it starts at %llu. Bit b of x goes to the lowest place "
 	      "of each group (bit dim·b), then y, then z", dim, 1 << j, big[0], big[1], big[2],
@@ -238,7 +225,7 @@ LZ_TEST(morton_is_a_bijection_with_consecutive_blocks)
 				int32_t cx[3];
 				bf_decode(dim, (int32_t)m, q, cx);
 				code[q] = lz_morton(dim, (uint32_t)cx[0], (uint32_t)cx[1], (uint32_t)cx[2]);
-				CHECK(code[q] < n && !seen[code[q]], "%dD grid of %u^%d cells: cell "
+				LZ_REQUIRE(code[q] < n && !seen[code[q]], "%dD grid of %u^%d cells: cell "
 				              "(%d, %d, %d) has Morton code %llu, %s; the codes of the cells of a "
 				              "2^k grid must be exactly 0 .. m^dim - 1, each once", dim, m, dim,
 				              cx[0], cx[1], cx[2], (unsigned long long)code[q],
@@ -255,7 +242,7 @@ LZ_TEST(morton_is_a_bijection_with_consecutive_blocks)
 						corner[a] = cx[a] >> j << j;
 					size_t qc = (size_t)corner[0] + m * ((size_t)corner[1] + m * (size_t)corner[2]);
 					uint64_t base = code[qc];
-					CHECK(base % run == 0 && code[q] >= base && code[q] < base + run,
+					LZ_REQUIRE(base % run == 0 && code[q] >= base && code[q] < base + run,
 					              "%dD: cell (%d, %d, %d) has code %llu, but its aligned block "
 					              "of side %d starting at (%d, %d, %d) (code %llu) should hold "
 					              "the %llu consecutive codes from a multiple of %llu: "
@@ -277,7 +264,7 @@ LZ_TEST(morton_matches_bit_by_bit_up_to_the_largest_coordinates)
 	for (int b = 0; b < 21; b++) {
 		uint32_t v = 1u << b;
 		uint64_t gx = lz_morton(3, v, 0, 0), gy = lz_morton(3, 0, v, 0), gz = lz_morton(3, 0, 0, v);
-		CHECK(gx == (uint64_t)1 << 3 * b && gy == (uint64_t)1 << (3 * b + 1) &&
+		LZ_REQUIRE(gx == (uint64_t)1 << 3 * b && gy == (uint64_t)1 << (3 * b + 1) &&
 		              gz == (uint64_t)1 << (3 * b + 2), "3D: bit %d alone in x, y or z gave "
 		              "codes %#llx, %#llx, %#llx; expected bits %d, %d, %d — the high bits need "
 		              "64-bit arithmetic from the start", b, (unsigned long long)gx,
@@ -286,22 +273,22 @@ LZ_TEST(morton_matches_bit_by_bit_up_to_the_largest_coordinates)
 	for (int b = 0; b < 32; b++) {
 		uint32_t v = 1u << b;
 		uint64_t gx = lz_morton(2, v, 0, 0), gy = lz_morton(2, 0, v, 0);
-		CHECK(gx == (uint64_t)1 << 2 * b && gy == (uint64_t)1 << (2 * b + 1),
+		LZ_REQUIRE(gx == (uint64_t)1 << 2 * b && gy == (uint64_t)1 << (2 * b + 1),
 		              "2D: bit %d alone in x or y gave codes %#llx, %#llx; expected bits %d and "
 		              "%d (all 32 bits of a 2D coordinate count; shift in 64 bits)", b,
 		              (unsigned long long)gx, (unsigned long long)gy, 2 * b, 2 * b + 1);
 	}
 	uint32_t top3 = (1u << 21) - 1, top2 = (1u << 31) - 1;
-	CHECK(lz_morton(3, top3, top3, top3) == (UINT64_C(1) << 63) - 1,
+	LZ_REQUIRE(lz_morton(3, top3, top3, top3) == (UINT64_C(1) << 63) - 1,
 	              "lz_morton(3, 2^21-1, 2^21-1, 2^21-1) = %#llx, expected 63 one bits",
 	              (unsigned long long)lz_morton(3, top3, top3, top3));
-	CHECK(lz_morton(2, top2, top2, 0) == (UINT64_C(1) << 62) - 1,
+	LZ_REQUIRE(lz_morton(2, top2, top2, 0) == (UINT64_C(1) << 62) - 1,
 	              "lz_morton(2, 2^31-1, 2^31-1, 0) = %#llx, expected 62 one bits",
 	              (unsigned long long)lz_morton(2, top2, top2, 0));
-	CHECK(lz_morton(2, UINT32_MAX, 0, 0) == UINT64_C(0x5555555555555555),
+	LZ_REQUIRE(lz_morton(2, UINT32_MAX, 0, 0) == UINT64_C(0x5555555555555555),
 	              "lz_morton(2, 2^32-1, 0, 0) = %#llx, expected the even bits 0x5555555555555555",
 	              (unsigned long long)lz_morton(2, UINT32_MAX, 0, 0));
-	gsl_rng *rng = rng_new(401);
+	gsl_rng *rng = lz_test_rng(401);
 	for (int t = 0; t < 20000; t++) {
 		int dim = 2 + t % 2;
 		uint32_t x = (uint32_t)gsl_rng_get(rng), y = (uint32_t)gsl_rng_get(rng),
@@ -312,7 +299,7 @@ LZ_TEST(morton_matches_bit_by_bit_up_to_the_largest_coordinates)
 			z &= top3;
 		}
 		uint64_t got = lz_morton(dim, x, y, z), want = bf_morton(dim, x, y, dim == 3 ? z : 0);
-		CHECK(got == want, "lz_morton(%d, %u, %u, %u) = %#llx, but interleaving the "
+		LZ_REQUIRE(got == want, "lz_morton(%d, %u, %u, %u) = %#llx, but interleaving the "
 		              "bits one by one gives %#llx", dim, x, y, z, (unsigned long long)got,
 		              (unsigned long long)want);
 	}
@@ -330,7 +317,7 @@ LZ_TEST(site_cell_is_the_high_bits)
 		int shift;
 	} grids[] = {{2, 64, 0}, {2, 64, 2}, {2, 64, 4}, {2, 128, 3}, {3, 32, 0}, {3, 32, 1},
 	             {3, 32, 3}, {3, 64, 4}};
-	gsl_rng *rng = rng_new(402);
+	gsl_rng *rng = lz_test_rng(402);
 	for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++)
 		for (int o = 0; o < 2; o++) {
 			int dim = grids[g].dim, s = grids[g].shift;
@@ -358,12 +345,12 @@ LZ_TEST(site_cell_is_the_high_bits)
 				char b1[64], b2[64], b3[64];
 				for (int k = 0; k < dim; k++)
 					want[k] = site[k] / w;
-				CHECK(got < c->ncells, "%dD lattice grid, L = %d, cells of %d sites, %s "
+				LZ_REQUIRE(got < c->ncells, "%dD lattice grid, L = %d, cells of %d sites, %s "
 				              "order: site %s was put in cell %zu, but the cells are numbered "
 				              "0 .. %zu", dim, L, w, order_name(c->order),
 				              fmt_cell(b1, 64, dim, site), got, c->ncells - 1);
 				bf_coords(c, got, cx);
-				CHECK(memcmp(cx, want, sizeof cx) == 0, "%dD lattice grid, L = %d, cells "
+				LZ_REQUIRE(memcmp(cx, want, sizeof cx) == 0, "%dD lattice grid, L = %d, cells "
 				              "of w = %d sites (shift %d), %s order: site %s was put in cell "
 				              "%zu, which is the cell %s; it belongs to the cell %s = site / w "
 				              "(cell coordinates are r >> shift, and lz_cells_index turns them "
@@ -386,14 +373,14 @@ static void check_point(const lz_cells *c, const double *x, const int32_t *want,
 {
 	size_t got = lz_cells_of_point(c, x);
 	int dim = c->dim;
-	CHECK(got < c->ncells, "%dD %s box of side L = %g, %d cells per side: a point "
+	LZ_REQUIRE(got < c->ncells, "%dD %s box of side L = %g, %d cells per side: a point "
 	              "(%.17g, %.17g, ...) went to cell %zu, but the cells are numbered 0 .. %zu "
 	              "(%s)", dim, c->periodic ? "periodic" : "walled", c->side, c->m, x[0], x[1],
 	              got, c->ncells - 1, why);
 	int32_t cx[3] = {0, 0, 0};
 	bf_coords(c, got, cx);
 	for (int k = 0; k < dim; k++)
-		CHECK(cx[k] == want[k], "%dD %s box of side L = %g cut into %d cells of width "
+		LZ_REQUIRE(cx[k] == want[k], "%dD %s box of side L = %g cut into %d cells of width "
 		              "w = %g, %s order: the point with coordinate %d = %.17g belongs to cell "
 		              "coordinate %d, but lz_cells_of_point put it in a cell with coordinate "
 		              "%d — %s", dim, c->periodic ? "periodic" : "walled", c->side, c->m,
@@ -411,7 +398,7 @@ LZ_TEST(point_cell_wraps_into_the_periodic_box)
 	             {2, 8, 8.0, LZ_CELLS_MORTON}, {3, 5, 5.0, LZ_CELLS_MORTON},
 	             {3, 4, 7.25, LZ_CELLS_ROW}, {3, 3, 2.75, LZ_CELLS_MORTON},
 	             {2, 3, 14.6, LZ_CELLS_MORTON}};  /* 14.6: a hair below L rounds up to m */
-	gsl_rng *rng = rng_new(403);
+	gsl_rng *rng = lz_test_rng(403);
 	for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
 		int dim = grids[g].dim;
 		int32_t m = grids[g].m;
@@ -497,7 +484,7 @@ LZ_TEST(point_cell_with_walls_clamps_to_the_edge_cells)
 	} grids[] = {{2, 6, 9.0, LZ_CELLS_ROW}, {3, 4, 6.0, LZ_CELLS_MORTON}, {2, 3, 14.6, LZ_CELLS_ROW},
 	             {2, 1, 3.0, LZ_CELLS_ROW}, {2, 2, 5.0, LZ_CELLS_MORTON},
 	             {3, 5, 5.5, LZ_CELLS_MORTON}};
-	gsl_rng *rng = rng_new(404);
+	gsl_rng *rng = lz_test_rng(404);
 	for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
 		int dim = grids[g].dim;
 		int32_t m = grids[g].m;
@@ -575,17 +562,17 @@ static int get_block(const lz_cells *c, size_t s, int half, uint32_t *out)
 	int n = lz_cells_stencil(c, s, half, out);
 	int most = half ? c->nhalf : c->nfull;
 	const char *what = half ? "half block" : "block";
-	CHECK(n >= 1 && n <= most, "%dD %s grid of %d cells per side: the %s of cell %zu "
+	LZ_REQUIRE(n >= 1 && n <= most, "%dD %s grid of %d cells per side: the %s of cell %zu "
 	              "%s has %d cells; it can have 1 to %d", c->dim, c->periodic ? "periodic" :
 	              "walled", c->m, what, s, fmt_cell(b1, 64, c->dim, cs), n, most);
-	CHECK(out[0] == s, "%dD grid of %d cells per side: the %s of cell %zu starts with "
+	LZ_REQUIRE(out[0] == s, "%dD grid of %d cells per side: the %s of cell %zu starts with "
 	              "%u; the cell itself must come first", c->dim, c->m, what, s, out[0]);
 	for (int k = 0; k < n; k++) {
-		CHECK(out[k] < c->ncells, "%dD grid of %d^%d cells: entry %d of the %s of "
+		LZ_REQUIRE(out[k] < c->ncells, "%dD grid of %d^%d cells: entry %d of the %s of "
 		              "cell %zu is %u, but the cells are numbered 0 .. %zu", c->dim, c->m,
 		              c->dim, k, what, s, out[k], c->ncells - 1);
 		bf_coords(c, out[k], ct);
-		CHECK(bf_touch(c, s, out[k]), "%dD %s grid of %d cells per side, %s order: the "
+		LZ_REQUIRE(bf_touch(c, s, out[k]), "%dD %s grid of %d cells per side, %s order: the "
 		              "%s of cell %s lists cell %u %s, which is not next to it%s", c->dim,
 		              c->periodic ? "periodic" : "walled", c->m, order_name(c->order), what,
 		              fmt_cell(b1, 64, c->dim, cs), out[k], fmt_cell(b2, 64, c->dim, ct),
@@ -593,7 +580,7 @@ static int get_block(const lz_cells *c, size_t s, int half, uint32_t *out)
 		              "into storage indices with lz_cells_index?)" : " (with walls there is no "
 		              "wrap: a neighbour beyond a wall is left out)");
 		for (int j = 0; j < k; j++)
-			CHECK(out[j] != out[k], "%dD %s grid of %d cells per side: the %s of cell "
+			LZ_REQUIRE(out[j] != out[k], "%dD %s grid of %d cells per side: the %s of cell "
 			              "%s lists cell %u %s twice: each offset must give one cell", c->dim,
 			              c->periodic ? "periodic" : "walled", c->m, what,
 			              fmt_cell(b1, 64, c->dim, cs), out[k], fmt_cell(b2, 64, c->dim, ct));
@@ -621,14 +608,14 @@ LZ_TEST(block_is_the_touching_cells_with_wrap)
 				int32_t cs[3] = {0, 0, 0};
 				char b1[64];
 				bf_coords(c, s, cs);
-				CHECK(n == c->nfull, "%dD periodic grid of %d cells per side, %s order: "
+				LZ_REQUIRE(n == c->nfull, "%dD periodic grid of %d cells per side, %s order: "
 				              "the block of cell %s has %d cells; with the wrap every cell has "
 				              "%d (itself and all its neighbours, also across the box edge)", dim,
 				              m, order_name(c->order), fmt_cell(b1, 64, dim, cs), n, c->nfull);
 				/* The half block is half of it: the cell and one of each pair of
 				 * opposite neighbours. */
 				int nh = get_block(c, s, 1, out);
-				CHECK(nh == c->nhalf, "%dD periodic grid of %d cells per side, %s order: the "
+				LZ_REQUIRE(nh == c->nhalf, "%dD periodic grid of %d cells per side, %s order: the "
 				              "half block of cell %s has %d cells; it is the cell and one of each "
 				              "of the %d pairs of opposite neighbours, %d in all", dim, m,
 				              order_name(c->order), fmt_cell(b1, 64, dim, cs), nh,
@@ -659,7 +646,7 @@ LZ_TEST(block_with_walls_stops_at_the_walls)
 				for (int k = 0; k < dim; k++)  /* 3 neighbours per axis, 2 at a wall, 1 at two */
 					want *= 1 + (cs[k] > 0) + (cs[k] < m - 1);
 				char b1[64];
-				CHECK(n == want, "%dD box with walls, %d cells per side, %s order: the "
+				LZ_REQUIRE(n == want, "%dD box with walls, %d cells per side, %s order: the "
 				              "block of cell %s has %d cells, expected %d (a cell on %s has "
 				              "no neighbours beyond the wall: 4 or 6 in 2D corners and edges, "
 				              "8, 12 or 18 in 3D)", dim, m, order_name(c->order),
@@ -668,7 +655,7 @@ LZ_TEST(block_with_walls_stops_at_the_walls)
 				/* Its half block holds cells of the block only (get_block), and away
 				 * from the walls it is the cell and one of each opposite pair. */
 				int nh = get_block(c, s, 1, out);
-				CHECK(want < c->nfull || nh == c->nhalf, "%dD box with walls, %d cells per "
+				LZ_REQUIRE(want < c->nfull || nh == c->nhalf, "%dD box with walls, %d cells per "
 				              "side, %s order: the half block of the inner cell %s has %d cells; "
 				              "away from the walls it is the cell and one of each of the %d "
 				              "pairs of opposite neighbours, %d in all", dim, m,
@@ -692,7 +679,7 @@ static void check_half_blocks(lz_cells *c)
 		if (c->periodic) {
 			int32_t cs[3] = {0, 0, 0};
 			bf_coords(c, s, cs);
-			CHECK(nh[s] == c->nhalf, "%dD periodic grid of %d cells per side: the half "
+			LZ_REQUIRE(nh[s] == c->nhalf, "%dD periodic grid of %d cells per side: the half "
 			              "block of cell %s has %d cells, expected %d (itself and half of its "
 			              "%d neighbours)", c->dim, c->m, fmt_cell(b1, 64, c->dim, cs), nh[s],
 			              c->nhalf, c->nfull - 1);
@@ -710,7 +697,7 @@ static void check_half_blocks(lz_cells *c)
 			int32_t cs[3] = {0, 0, 0}, ct[3] = {0, 0, 0};
 			bf_coords(c, s, cs);
 			bf_coords(c, t, ct);
-			CHECK(times == 1, "%dD %s grid of %d cells per side, %s order: the touching "
+			LZ_REQUIRE(times == 1, "%dD %s grid of %d cells per side, %s order: the touching "
 			              "cells %s and %s appear in %d of their two half blocks, expected "
 			              "exactly one — %s", c->dim, c->periodic ? "periodic" : "walled", c->m,
 			              order_name(c->order), fmt_cell(b1, 64, c->dim, cs),
@@ -764,7 +751,7 @@ LZ_TEST(half_block_is_the_forward_half)
 							in &= c->periodic || (cs[k] + off[k] >= 0 && cs[k] + off[k] < m);
 						want += fwd && in;
 					}
-			CHECK(n == want, "%dD grid, m = %d: the half block of cell %s has %d cells, "
+			LZ_REQUIRE(n == want, "%dD grid, m = %d: the half block of cell %s has %d cells, "
 			              "the forward half has %d", dim, m, fmt_cell(b1, 64, dim, cs), n, want);
 			for (int k = 1; k < n; k++) {
 				int32_t ct[3] = {0, 0, 0}, off[3] = {0, 0, 0};
@@ -777,7 +764,7 @@ LZ_TEST(half_block_is_the_forward_half)
 						off[a] += m;
 				}
 				int fwd = off[2] > 0 || (off[2] == 0 && (off[1] > 0 || (off[1] == 0 && off[0] > 0)));
-				CHECK(fwd, "%dD grid, m = %d: the half block of cell %s lists %s, at "
+				LZ_REQUIRE(fwd, "%dD grid, m = %d: the half block of cell %s lists %s, at "
 				              "offset (%d, %d, %d); the header's half block takes the offsets "
 				              "(a, b, c) with c > 0, or c = 0 and b > 0, or c = b = 0 and a > 0",
 				              dim, m, fmt_cell(b1, 64, dim, cs), fmt_cell(b2, 64, dim, ct),
@@ -800,31 +787,31 @@ static void check_links(const lz_cells *c, const char *what)
 	for (size_t q = 0; q <= nc; q++) {
 		int32_t i = c->head[q];
 		if (q == nc)
-			CHECK(i == -1, "%s: the extra cell %zu (the always-empty one) has head %d; "
+			LZ_REQUIRE(i == -1, "%s: the extra cell %zu (the always-empty one) has head %d; "
 			              "it must be -1 so that loops over a block with a missing cell find "
 			              "nobody — set every head, 0 .. ncells, to -1 first", what, nc, i);
 		while (i != -1) {
-			CHECK(i >= 0 && (size_t)i < n, "%s: the list of cell %zu reaches %d, which "
+			LZ_REQUIRE(i >= 0 && (size_t)i < n, "%s: the list of cell %zu reaches %d, which "
 			              "is not a particle (0 .. %zu): are all heads set to -1 before "
 			              "linking, so that every list ends with -1?", what, q, i, n - 1);
-			CHECK(c->of[i] == q, "%s: particle %d is in the list of cell %zu, but it "
+			LZ_REQUIRE(c->of[i] == q, "%s: particle %d is in the list of cell %zu, but it "
 			              "lives in cell of[%d] = %u (a list left over from an earlier call?)",
 			              what, i, q, i, c->of[i]);
-			CHECK(!seen[i], "%s: particle %d is met twice in the lists (a list that "
+			LZ_REQUIRE(!seen[i], "%s: particle %d is met twice in the lists (a list that "
 			              "loops back on itself never ends)", what, i);
 			seen[i] = 1;
 			i = c->next[i];
 		}
 	}
 	for (size_t i = 0; i < n; i++)
-		CHECK(seen[i], "%s: particle %zu (cell %u) is in no list: every particle must "
+		LZ_REQUIRE(seen[i], "%s: particle %zu (cell %u) is in no list: every particle must "
 		              "be reachable from the head of its cell", what, i, c->of[i]);
 	free(seen);
 }
 
 LZ_TEST(link_lists_every_particle_in_its_cell)
 {
-	gsl_rng *rng = rng_new(405);
+	gsl_rng *rng = lz_test_rng(405);
 	for (int v = 0; v < 2; v++) {
 		lz_cells *c = v == 0 ? hand_grid(2, 5, 5.0, 1, LZ_CELLS_ROW, 400, 0)
 		                     : hand_grid(3, 3, 3.0, 1, LZ_CELLS_MORTON, 400, 0);
@@ -868,15 +855,15 @@ static void check_arrays(const lz_cells *c, const char *what)
 	for (size_t i = 0; i < c->n; i++)
 		want[c->of[i]]++;
 	for (size_t q = 0; q <= nc; q++) {
-		CHECK(c->count[q] == want[q], "%s: count[%zu] = %u, but %u particles live in "
+		LZ_REQUIRE(c->count[q] == want[q], "%s: count[%zu] = %u, but %u particles live in "
 		              "cell %zu%s", what, q, c->count[q], want[q], q, q == nc ? " (the extra, "
 		              "always-empty cell: reset all ncells + 1 counts)" : " (are the counts "
 		              "reset to 0 first?)");
 		const uint32_t *s = c->slot + q * c->cap;
 		for (uint32_t k = 0; k < c->count[q]; k++) {
-			CHECK(s[k] < c->n && c->of[s[k]] == q, "%s: slot %u of cell %zu holds %u, "
+			LZ_REQUIRE(s[k] < c->n && c->of[s[k]] == q, "%s: slot %u of cell %zu holds %u, "
 			              "which is not a particle of that cell", what, k, q, s[k]);
-			CHECK(k == 0 || s[k] > s[k - 1], "%s: cell %zu lists particle %u after %u; "
+			LZ_REQUIRE(k == 0 || s[k] > s[k - 1], "%s: cell %zu lists particle %u after %u; "
 			              "the particles of a cell must be in increasing index (go through "
 			              "the particles in order)", what, q, s[k], s[k - 1]);
 		}
@@ -886,7 +873,7 @@ static void check_arrays(const lz_cells *c, const char *what)
 
 LZ_TEST(fill_arrays_match_the_cells_in_index_order)
 {
-	gsl_rng *rng = rng_new(406);
+	gsl_rng *rng = lz_test_rng(406);
 	for (int v = 0; v < 2; v++) {
 		size_t nc = v == 0 ? 36 : 27, n = 500;
 		uint32_t *of = malloc(n * sizeof *of), *per = calloc(nc, sizeof *per), most = 0;
@@ -904,14 +891,14 @@ LZ_TEST(fill_arrays_match_the_cells_in_index_order)
 		snprintf(what, sizeof what, "%zu particles in %zu cells, cap = %u (the fullest cell "
 		         "exactly full)", n, nc, most);
 		int st = lz_cells_fill(c);
-		CHECK(st == LZ_OK, "%s: lz_cells_fill returned %d (%s), expected LZ_OK: a cell "
+		LZ_REQUIRE(st == LZ_OK, "%s: lz_cells_fill returned %d (%s), expected LZ_OK: a cell "
 		              "holding exactly cap particles is full, not overfull", what, st,
 		              lz_error_message());
 		check_arrays(c, what);
 		c->n = 7;
 		for (size_t i = 0; i < 7; i++)
 			c->of[i] = (uint32_t)(nc - 1 - i % 2);
-		CHECK(lz_cells_fill(c) == LZ_OK, "7 particles in two cells: %s",
+		LZ_REQUIRE(lz_cells_fill(c) == LZ_OK, "7 particles in two cells: %s",
 		              lz_error_message());
 		check_arrays(c, "filling again with 7 particles in the last two cells (the old counts "
 		             "must be forgotten)");
@@ -950,16 +937,16 @@ LZ_TEST(fill_refuses_an_overfull_cell)
 		c->of[i] = 17;
 	c->of[140] = 17;
 	int st = lz_cells_fill(c);
-	CHECK(st == LZ_EPHYS, "cell 17 receives 5 particles but has room for cap = 4: "
+	LZ_REQUIRE(st == LZ_EPHYS, "cell 17 receives 5 particles but has room for cap = 4: "
 	              "lz_cells_fill returned %d, expected LZ_EPHYS (%d) — a fixed array must "
 	              "refuse the extra particle, never drop it silently", st, LZ_EPHYS);
 	const char *msg = lz_error_message();
-	CHECK(says_number(msg, 17) && says_number(msg, 4), "the error message should name "
+	LZ_REQUIRE(says_number(msg, 17) && says_number(msg, 4), "the error message should name "
 	              "the cell (17) and its capacity (cap = 4) so the user knows what to enlarge; "
 	              "it says: \"%s\"", msg);
 	c->n = 140;  /* the same without the fifth: cell 17 exactly full */
 	st = lz_cells_fill(c);
-	CHECK(st == LZ_OK, "every cell holds at most cap = 4 particles (cell 17 exactly 4), "
+	LZ_REQUIRE(st == LZ_OK, "every cell holds at most cap = 4 particles (cell 17 exactly 4), "
 	              "but lz_cells_fill returned %d: %s", st, lz_error_message());
 	check_arrays(c, "cells filled up to cap = 4");
 	lz_cells_free(c);
@@ -967,7 +954,7 @@ LZ_TEST(fill_refuses_an_overfull_cell)
 	c->n = 3;
 	c->of[0] = c->of[1] = c->of[2] = 0;
 	st = lz_cells_fill(c);
-	CHECK(st == LZ_EINVAL, "a grid allocated with cap = 0 has no arrays: "
+	LZ_REQUIRE(st == LZ_EINVAL, "a grid allocated with cap = 0 has no arrays: "
 	              "lz_cells_fill must return LZ_EINVAL (%d), got %d", LZ_EINVAL, st);
 	lz_cells_free(c);
 }
@@ -1185,7 +1172,7 @@ static void check_pairs(const lz_cells *c, const double *x, size_t n, double rc,
 	size_t got = lz_cells_pairs(c, x, rc, out, cap), stored = got < cap ? got : cap;
 	uint64_t *keys = malloc((stored + 1) * sizeof *keys);
 	for (size_t k = 0; k < stored; k++) {
-		CHECK(out[k].i < out[k].j && out[k].j < n, "%s: pair number %zu is (%u, %u); "
+		LZ_REQUIRE(out[k].i < out[k].j && out[k].j < n, "%s: pair number %zu is (%u, %u); "
 		              "pairs must be (i, j) with i < j < N = %zu%s", what, k, out[k].i, out[k].j,
 		              n, out[k].i == out[k].j ? " (a particle met itself: is its own cell "
 		              "scanned twice, once as its list and once in the half block?)" : "");
@@ -1194,7 +1181,7 @@ static void check_pairs(const lz_cells *c, const double *x, size_t n, double rc,
 	qsort(keys, stored, sizeof *keys, key_cmp);
 	char line[320];
 	for (size_t k = 1; k < stored; k++)
-		CHECK(keys[k] != keys[k - 1], "%s: the pair %s was found twice — compare the "
+		LZ_REQUIRE(keys[k] != keys[k - 1], "%s: the pair %s was found twice — compare the "
 		              "particles of a cell only with those after them in its list, and the "
 		              "other cells only through the half block", what,
 		              describe(line, sizeof line, c, x, rc, keys[k]));
@@ -1211,10 +1198,10 @@ static void check_pairs(const lz_cells *c, const double *x, size_t n, double rc,
 		a++;
 		b++;
 	}
-	CHECK(got == nwant, "%s: lz_cells_pairs returned %zu, but there are %zu pairs "
+	LZ_REQUIRE(got == nwant, "%s: lz_cells_pairs returned %zu, but there are %zu pairs "
 	              "(the return value is the number of pairs)", what, got, nwant);
 	size_t counted = lz_cells_pairs(c, x, rc, NULL, 0);
-	CHECK(counted == nwant, "%s: with no room for pairs (out = NULL, cap = 0) "
+	LZ_REQUIRE(counted == nwant, "%s: with no room for pairs (out = NULL, cap = 0) "
 	              "lz_cells_pairs returned %zu, but there are %zu: like snprintf it must count "
 	              "every pair, stored or not", what, counted, nwant);
 	free(out);
@@ -1286,7 +1273,7 @@ static void random_pairs_case(gsl_rng *rng, int dim, double L, double rc_grid, d
 
 LZ_TEST(pairs_match_brute_force_2d)
 {
-	gsl_rng *rng = rng_new(407);
+	gsl_rng *rng = lz_test_rng(407);
 	static const size_t ns[] = {50, 400, 1500};
 	for (int periodic = 1; periodic >= 0; periodic--)
 		for (int o = 0; o < 2; o++)
@@ -1303,7 +1290,7 @@ END_TEST
 
 LZ_TEST(pairs_match_brute_force_3d)
 {
-	gsl_rng *rng = rng_new(408);
+	gsl_rng *rng = lz_test_rng(408);
 	static const size_t ns[] = {100, 800, 2000};
 	for (int periodic = 1; periodic >= 0; periodic--)
 		for (int o = 0; o < 2; o++)
@@ -1339,7 +1326,7 @@ static void two_points(gsl_rng *g, int dim, int periodic, const double *p, const
 LZ_TEST(pairs_at_exactly_the_cutoff_and_across_the_boundary)
 {
 	double below15 = nextafter(1.5, 0), above225 = nextafter(2.25, 3);
-	gsl_rng *rng = rng_new(409);
+	gsl_rng *rng = lz_test_rng(409);
 	two_points(rng, 2, 1, (double[]){0.5, 0.5}, (double[]){1.5, 0.5}, 0,
 	           "distance exactly rc is not a pair (distance² < rc², strictly)");
 	two_points(rng, 2, 1, (double[]){0.5, 0.5}, (double[]){below15, 0.5}, 1,
@@ -1380,7 +1367,7 @@ END_TEST
 
 LZ_TEST(pairs_of_one_two_and_crowded_cells)
 {
-	gsl_rng *rng = rng_new(410);
+	gsl_rng *rng = lz_test_rng(410);
 	double one[2] = {4.2, 7.7};
 	lz_cells *c = pair_grid(rng, 2, 10, 10.0, 1, LZ_CELLS_MORTON, 400);
 	pairs_case(c, one, one, 1, 1.0, NULL, 0, "a single point (N = 1): no pair");
@@ -1423,7 +1410,7 @@ END_TEST
 
 LZ_TEST(pairs_count_all_even_when_out_is_too_small)
 {
-	gsl_rng *rng = rng_new(411);
+	gsl_rng *rng = lz_test_rng(411);
 	size_t n = 500, nwant;
 	double *x = malloc(2 * n * sizeof *x);
 	for (size_t k = 0; k < 2 * n; k++)
@@ -1438,22 +1425,22 @@ LZ_TEST(pairs_count_all_even_when_out_is_too_small)
 	for (size_t k = 0; k < nwant; k++)
 		out[k] = (lz_pair){UINT32_MAX, UINT32_MAX};
 	size_t got = lz_cells_pairs(c, x, 1.0, out, cap);
-	CHECK(got == nwant, "%zu random points with room for only %zu pairs: "
+	LZ_REQUIRE(got == nwant, "%zu random points with room for only %zu pairs: "
 	              "lz_cells_pairs returned %zu, but there are %zu pairs — like snprintf it "
 	              "must count every pair, stored or not", n, cap, got, nwant);
 	for (size_t k = 0; k < nwant; k++) {
 		if (k >= cap) {
-			CHECK(out[k].i == UINT32_MAX && out[k].j == UINT32_MAX, "room for %zu "
+			LZ_REQUIRE(out[k].i == UINT32_MAX && out[k].j == UINT32_MAX, "room for %zu "
 			              "pairs, but out[%zu] was written: only the first cap pairs may be "
 			              "stored (the rest of the array belongs to the caller)", cap, k);
 			continue;
 		}
 		uint64_t key = pair_key(out[k].i, out[k].j);
-		CHECK(out[k].i < out[k].j && bsearch(&key, want, nwant, sizeof *want, key_cmp),
+		LZ_REQUIRE(out[k].i < out[k].j && bsearch(&key, want, nwant, sizeof *want, key_cmp),
 		              "out[%zu] = (%u, %u) is not a pair closer than rc", k, out[k].i, out[k].j);
 	}
 	got = lz_cells_pairs(c, x, 1.0, NULL, 0);
-	CHECK(got == nwant, "counting only (out = NULL, cap = 0): lz_cells_pairs returned "
+	LZ_REQUIRE(got == nwant, "counting only (out = NULL, cap = 0): lz_cells_pairs returned "
 	              "%zu, expected %zu", got, nwant);
 	free(out);
 	free(want);
@@ -1570,7 +1557,7 @@ LZ_TEST(pairs_of_a_million_points)
 {
 	size_t n = 1000000, nwant;
 	double L = 1000, rc = 1;
-	gsl_rng *rng = rng_new(412);
+	gsl_rng *rng = lz_test_rng(412);
 	double *x = malloc(2 * n * sizeof *x);
 	for (size_t k = 0; k < 2 * n; k++)
 		x[k] = L * gsl_rng_uniform(rng);
@@ -1605,7 +1592,7 @@ static void check_alloc_grid(const lz_cells *c, const char *what)
 	int32_t cx[3] = {0, 0, 0};
 	for (size_t q = 0; c->rank && q < c->ncells; q++) {
 		bf_decode(c->dim, c->m, q, cx);
-		CHECK(c->rank[q] == h->rank[q], "%s: lz_cells_alloc stored the cell %s at place %u "
+		LZ_REQUIRE(c->rank[q] == h->rank[q], "%s: lz_cells_alloc stored the cell %s at place %u "
 		      "of the Morton order, but sorting the cells by their codes (bit b of x at bit "
 		      "dim·b, then y, then z) puts it at place %u: are lz_morton's codes the "
 		      "header's?", what, fmt_cell(b1, 64, c->dim, cx), c->rank[q], h->rank[q]);
@@ -1622,7 +1609,7 @@ static void check_alloc_grid(const lz_cells *c, const char *what)
 			qsort(b, w, sizeof *b, u32_cmp);
 			bf_coords(c, s, cx);
 			for (size_t k = 0; k < w; k++)
-				CHECK(a[k] == b[k], "%s: the %s of cell %s, as lz_cells_alloc stored it "
+				LZ_REQUIRE(a[k] == b[k], "%s: the %s of cell %s, as lz_cells_alloc stored it "
 				      "from lz_cells_stencil, is not the set of the %s cells: sorted, "
 				      "entry %zu is %u where %u was expected (%zu stands for a cell beyond "
 				      "a wall)", what, half ? "half block" : "block",
@@ -1675,7 +1662,7 @@ static void check_bins(const lz_cells *c, const double *x, size_t n, const char 
 			want[k] = bf_axis_cell(c, p[k], &face);
 			ok &= got[k] == want[k] || (face >= 0 && (got[k] == face || got[k] == face - 1));
 		}
-		CHECK(ok, "%s: lz_cells_bin_points put point %zu at (%.17g, %.17g%s) in the cell "
+		LZ_REQUIRE(ok, "%s: lz_cells_bin_points put point %zu at (%.17g, %.17g%s) in the cell "
 		      "%s; it belongs to %s (lz_cells_of_point: floor(x / w) after wrapping into "
 		      "[0, L) in a periodic box, the nearest edge cell beyond a wall, m - 1 when "
 		      "round-off gives m)", what, i, p[0], p[1], dim == 3 ? ", ..." : "",
@@ -1702,7 +1689,7 @@ static void pipeline_round(lz_cells *c, gsl_rng *rng, size_t n, int shifted, con
 			x[k] += L * (double)((long)gsl_rng_uniform_int(rng, 7) - 3);
 	else
 		exact_pairs(x, n, dim, L, c->cutoff);
-	CHECK(lz_cells_bin_points(c, n, x) == LZ_OK, "%s, %zu points: lz_cells_bin_points "
+	LZ_REQUIRE(lz_cells_bin_points(c, n, x) == LZ_OK, "%s, %zu points: lz_cells_bin_points "
 	      "refused them: %s", what, n, lz_error_message());
 	check_bins(c, x, n, what);
 	lz_cells_link(c);
@@ -1733,11 +1720,11 @@ LZ_TEST(pipeline_alloc_bin_link_pairs_as_a_user_does)
 		{3, 6.0, 1.0, 1, LZ_CELLS_ROW, 1, 600}, {3, 5.5, 1.1, 0, LZ_CELLS_MORTON, 0, 500},
 		{3, 4.0, 1.0, 1, LZ_CELLS_MORTON, 0, 300},
 	};
-	gsl_rng *rng = rng_new(413);
+	gsl_rng *rng = lz_test_rng(413);
 	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
 		lz_cells *c = lz_cells_alloc(cs[k].dim, cs[k].L, cs[k].rc, cs[k].periodic, cs[k].order,
 		                             cs[k].n, 0);
-		CHECK(c != NULL, "lz_cells_alloc(%d, L = %g, rc = %g, %s, %s order): %s (it runs "
+		LZ_REQUIRE(c != NULL, "lz_cells_alloc(%d, L = %g, rc = %g, %s, %s order): %s (it runs "
 		      "lz_cells_stencil and, in Morton order, lz_morton, and checks their answers)",
 		      cs[k].dim, cs[k].L, cs[k].rc, cs[k].periodic ? "periodic" : "walls",
 		      order_name(cs[k].order), lz_error_message());

@@ -25,22 +25,9 @@
 #include "lz/nlist.h"
 #include "lztest.h"
 
-/* ck_assert_msg reports every passing check to the parent process (a write per call),
- * which costs seconds inside loops over a million entries: loops use EXPECT. */
-#define EXPECT(cond, ...)                          \
-	do {                                       \
-		if (!(cond))                       \
-			ck_abort_msg(__VA_ARGS__); \
-	} while (0)
 
 /* ---- references, by brute force ---- */
 
-static gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(g, seed);
-	return g;
-}
 
 static int kdim(lz_lattice_kind kind) { return kind >= LZ_LATTICE_CUBIC ? 3 : 2; }
 
@@ -131,15 +118,15 @@ static void check_list(const lz_nlist *nl, const int32_t *r, const uint8_t *want
 	int64_t L = nl->box->side;
 	const lz_nbuf *b = &nl->buf[nl->cur];
 	char pi[48], pj[48];
-	EXPECT(nl->cur == 0 || nl->cur == 1, "%s: cur = %d, it must be 0 or 1", what,
+	LZ_REQUIRE(nl->cur == 0 || nl->cur == 1, "%s: cur = %d, it must be 0 or 1", what,
 	              nl->cur);
-	EXPECT(b->start[0] == 0, "%s: the list in use starts at start[0] = %u, not 0",
+	LZ_REQUIRE(b->start[0] == 0, "%s: the list in use starts at start[0] = %u, not 0",
 	              what, b->start[0]);
 	for (size_t i = 0; i < n; i++)
-		EXPECT(b->start[i] <= b->start[i + 1], "%s: start[%zu] = %u > start[%zu] = "
+		LZ_REQUIRE(b->start[i] <= b->start[i + 1], "%s: start[%zu] = %u > start[%zu] = "
 		              "%u: the rows must lie back to back in index order", what, i,
 		              b->start[i], i + 1, b->start[i + 1]);
-	EXPECT(b->start[n] == b->len && b->len <= b->cap, "%s: start[n] = %u, len = %zu, "
+	LZ_REQUIRE(b->start[n] == b->len && b->len <= b->cap, "%s: start[n] = %u, len = %zu, "
 	              "cap = %zu: the last row must end at len (t->start[n] = t->len), within the "
 	              "room", what, b->start[n], b->len, b->cap);
 	uint8_t *seen = calloc(n, 1);
@@ -149,15 +136,15 @@ static void check_list(const lz_nlist *nl, const int32_t *r, const uint8_t *want
 		const uint32_t *row = lz_nlist_row(nl, i, &len);
 		for (size_t k = 0; k < len; k++) {
 			uint32_t j = row[k];
-			EXPECT(j < n, "%s: row %zu holds %u, but there are only %zu particles",
+			LZ_REQUIRE(j < n, "%s: row %zu holds %u, but there are only %zu particles",
 			              what, i, j, n);
-			EXPECT(j != i, "%s: particle %zu is on its own row: a self entry (its "
+			LZ_REQUIRE(j != i, "%s: particle %zu is on its own row: a self entry (its "
 			              "distance to itself is 0, so it would always count as its own "
 			              "neighbour)", what, i);
-			EXPECT(!seen[j], "%s: particle %u is twice on the row of particle %zu: a "
+			LZ_REQUIRE(!seen[j], "%s: particle %u is twice on the row of particle %zu: a "
 			              "duplicate (a neighbour listed twice is felt twice)", what, j, i);
 			seen[j] = 1;
-			EXPECT(want[i * n + j], "%s: particle %u at %s is on the row of %zu at "
+			LZ_REQUIRE(want[i * n + j], "%s: particle %u at %s is on the row of %zu at "
 			              "%s, but their distance² is %lld, not below r_l² = %lld (r_l = %g): "
 			              "listed at or beyond the list radius (the rule is d < r_l, "
 			              "strictly; distances are minimum-image)", what, j,
@@ -183,7 +170,7 @@ static void check_list(const lz_nlist *nl, const int32_t *r, const uint8_t *want
 	}
 	free(seen);
 	size_t pairs = count_ones(want, n * n);
-	EXPECT(lz_nlist_entries(nl) == pairs, "%s: lz_nlist_entries = %zu, expected %zu",
+	LZ_REQUIRE(lz_nlist_entries(nl) == pairs, "%s: lz_nlist_entries = %zu, expected %zu",
 	              what, lz_nlist_entries(nl), pairs);
 }
 
@@ -198,7 +185,7 @@ static void fill_list(lz_nlist *nl, const uint8_t *want)
 		t->start[i] = (uint32_t)t->len;
 		for (size_t j = n; j-- > 0;)
 			if (want[i * n + j])
-				EXPECT(lz_nbuf_push(t, (uint32_t)j) == LZ_OK, "test set-up: no memory");
+				LZ_REQUIRE(lz_nbuf_push(t, (uint32_t)j) == LZ_OK, "test set-up: no memory");
 	}
 	t->start[n] = (uint32_t)t->len;
 	nl->cur = !nl->cur;
@@ -207,7 +194,7 @@ static void fill_list(lz_nlist *nl, const uint8_t *want)
 static void check_marks_clear(const lz_nlist *nl, const char *what)
 {
 	for (size_t i = 0; i < nl->n; i++)
-		EXPECT(nl->mark[i] == 0, "%s: mark[%zu] = %u after the call; mark[] must be "
+		LZ_REQUIRE(nl->mark[i] == 0, "%s: mark[%zu] = %u after the call; mark[] must be "
 		              "all 0 between calls (clear every mark you set, or the next row, or the "
 		              "next refresh, refuses that particle)", what, i, nl->mark[i]);
 }
@@ -215,7 +202,7 @@ static void check_marks_clear(const lz_nlist *nl, const char *what)
 static lz_lattice_box *box_new(lz_lattice_kind kind, int64_t L)
 {
 	lz_lattice_box *b = lz_lattice_box_alloc(kind, L);
-	EXPECT(b != NULL, "lz_lattice_box_alloc(%s, %lld): %s", lz_lattice_name(kind),
+	LZ_REQUIRE(b != NULL, "lz_lattice_box_alloc(%s, %lld): %s", lz_lattice_name(kind),
 	              (long long)L, lz_error_message());
 	return b;
 }
@@ -223,7 +210,7 @@ static lz_lattice_box *box_new(lz_lattice_kind kind, int64_t L)
 static lz_nlist *nl_new(const lz_lattice_box *b, size_t n, double rl)
 {
 	lz_nlist *nl = lz_nlist_alloc(b, n, rl);
-	EXPECT(nl != NULL, "lz_nlist_alloc(n = %zu, rl = %g): %s", n, rl,
+	LZ_REQUIRE(nl != NULL, "lz_nlist_alloc(n = %zu, rl = %g): %s", n, rl,
 	              lz_error_message());
 	return nl;
 }
@@ -302,7 +289,7 @@ static lz_cells *grid_new(int dim, int32_t L, int32_t w, int scramble, gsl_rng *
 	c->inv_width = (double)c->m / L;
 	while ((1 << c->shift) < w)
 		c->shift++;
-	EXPECT((1 << c->shift) == w && c->m >= 3, "test set-up: w = %d must be a power "
+	LZ_REQUIRE((1 << c->shift) == w && c->m >= 3, "test set-up: w = %d must be a power "
 	              "of two with L / w >= 3", w);
 	size_t m = (size_t)c->m, nc = dim == 3 ? m * m * m : m * m;
 	c->ncells = nc;
@@ -402,7 +389,7 @@ LZ_TEST(allpairs_matches_brute_force)
 		 * away through both images, and not listed */
 		{LZ_LATTICE_SQUARE, 8, 30, 4},
 	};
-	gsl_rng *g = rng_new(41);
+	gsl_rng *g = lz_test_rng(41);
 	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
 		int dim = kdim(cs[k].kind);
 		lz_lattice_box *b = box_new(cs[k].kind, cs[k].L);
@@ -427,9 +414,9 @@ LZ_TEST(allpairs_matches_brute_force)
 			         cs[k].n, cs[k].rl);
 			uint8_t *want = bf_matrix(cs[k].kind, cs[k].L, cs[k].n, r, nl->rl2);
 			int cur = nl->cur;
-			EXPECT(lz_nlist_build_allpairs(nl, r) == LZ_OK, "%s: %s", what,
+			LZ_REQUIRE(lz_nlist_build_allpairs(nl, r) == LZ_OK, "%s: %s", what,
 			              lz_error_message());
-			EXPECT(nl->cur == !cur, "%s: cur went from %d to %d; a build writes the "
+			LZ_REQUIRE(nl->cur == !cur, "%s: cur went from %d to %d; a build writes the "
 			              "target buf[!cur] and then flips cur", what, cur, nl->cur);
 			check_list(nl, r, want, what);
 			free(want);
@@ -452,7 +439,7 @@ static void build_allpairs_thrice(lz_nlist *nl, const int32_t *r, const uint8_t 
 	snprintf(again, sizeof again, "%s, built a third time into the copy of the first build "
 	         "(its old entries must go: t->len = 0 first)", what);
 	for (int k = 0; k < 3; k++) {
-		EXPECT(lz_nlist_build_allpairs(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+		LZ_REQUIRE(lz_nlist_build_allpairs(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
 		check_list(nl, r, want, k == 2 ? again : what);
 	}
 }
@@ -516,7 +503,7 @@ LZ_TEST(allpairs_one_particle_and_pairs_across_the_boundary)
 		         "%g)", cs[k].n, cs[k].n > 1 ? "s" : "", lz_lattice_name(cs[k].kind), cs[k].L,
 		         cs[k].rl);
 		uint8_t *want = bf_matrix(cs[k].kind, cs[k].L, cs[k].n, cs[k].r, nl->rl2);
-		EXPECT(count_ones(want, cs[k].n * cs[k].n) == 2 * cs[k].pairs, "test set-up");
+		LZ_REQUIRE(count_ones(want, cs[k].n * cs[k].n) == 2 * cs[k].pairs, "test set-up");
 		build_allpairs_thrice(nl, cs[k].r, want, what);
 		free(want);
 		lz_nlist_free(nl);
@@ -537,12 +524,12 @@ static void cells_case(lz_lattice_kind kind, int32_t L, int32_t w, double rl, si
 	grid_bin(c, n, r);
 	uint8_t *want = bf_matrix(kind, L, n, r, nl->rl2);
 	int cur = nl->cur;
-	EXPECT(lz_nlist_build_cells(nl, c, r) == LZ_OK, "%s: %s", what, lz_error_message());
-	EXPECT(nl->cur == !cur, "%s: cur went from %d to %d; a build writes the target "
+	LZ_REQUIRE(lz_nlist_build_cells(nl, c, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	LZ_REQUIRE(nl->cur == !cur, "%s: cur went from %d to %d; a build writes the target "
 	              "buf[!cur] and then flips cur", what, cur, nl->cur);
 	check_list(nl, r, want, what);
 	/* Once more on the same grid: the new list replaces the old one. */
-	EXPECT(lz_nlist_build_cells(nl, c, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	LZ_REQUIRE(lz_nlist_build_cells(nl, c, r) == LZ_OK, "%s: %s", what, lz_error_message());
 	check_list(nl, r, want, what);
 	free(want);
 	grid_free(c);
@@ -557,7 +544,7 @@ LZ_TEST(cells_build_matches_brute_force)
 		{LZ_LATTICE_SQUARE8, 32, 8, 150, 5.5}, {LZ_LATTICE_CUBIC, 32, 8, 400, 4.5},
 		{LZ_LATTICE_CUBIC18, 16, 4, 150, 2.5},
 	};
-	gsl_rng *g = rng_new(43);
+	gsl_rng *g = lz_test_rng(43);
 	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++)
 		for (int scramble = 0; scramble < 2; scramble++) {
 			int dim = kdim(cs[k].kind);
@@ -592,10 +579,10 @@ LZ_TEST(cells_side_exactly_reach_four_cells_per_side)
 		{LZ_LATTICE_TRIANGULAR, 64, 16, 13.8, tri, 6},
 		{LZ_LATTICE_CUBIC, 32, 8, 8, NULL, 0},
 	};
-	gsl_rng *g = rng_new(47);
+	gsl_rng *g = lz_test_rng(47);
 	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
 		int dim = kdim(cs[k].kind);
-		EXPECT(lz_lattice_reach(cs[k].kind, cs[k].rl) == cs[k].w, "test set-up: reach");
+		LZ_REQUIRE(lz_lattice_reach(cs[k].kind, cs[k].rl) == cs[k].w, "test set-up: reach");
 		size_t n = cs[k].nfix + 120;
 		int32_t *r = malloc(n * (size_t)dim * sizeof *r);
 		if (cs[k].nfix)
@@ -621,7 +608,7 @@ LZ_TEST(cells_all_particles_in_one_cell)
 	 * neighbours (only i itself is left off its row). Six more sit just across the
 	 * box's faces and its corner, in cells that touch the crowded one only through the
 	 * wrap: each is a neighbour of some of the forty. */
-	gsl_rng *g = rng_new(53);
+	gsl_rng *g = lz_test_rng(53);
 	for (int three = 0; three < 2; three++) {
 		lz_lattice_kind kind = three ? LZ_LATTICE_CUBIC : LZ_LATTICE_SQUARE;
 		int dim = kdim(kind);
@@ -654,7 +641,7 @@ LZ_TEST(cells_one_particle_and_pairs_across_the_boundary)
 	static const int32_t sq[] = {0, 7, 63, 8};
 	static const int32_t tri[] = {0, 0, 31, 1};
 	static const int32_t cub[] = {0, 31, 0, 31, 0, 31};
-	gsl_rng *g = rng_new(59);
+	gsl_rng *g = lz_test_rng(59);
 	cells_case(LZ_LATTICE_SQUARE, 64, 4, 3, 1, one, 0, g,
 	           "build from cells, one particle (its row must stay empty)");
 	cells_case(LZ_LATTICE_SQUARE, 64, 4, 1.5, 2, sq, 0, g,
@@ -674,16 +661,16 @@ static void refused(lz_nlist *nl, const lz_cells *c, const int32_t *r, const cha
 	int cur = nl->cur;
 	size_t entries = lz_nlist_entries(nl);
 	int st = lz_nlist_build_cells(nl, c, r);
-	EXPECT(st == LZ_EINVAL, "lz_nlist_build_cells returned %d on %s; it must refuse "
+	LZ_REQUIRE(st == LZ_EINVAL, "lz_nlist_build_cells returned %d on %s; it must refuse "
 	              "with LZ_EINVAL (such cells cannot give the right list)", st, why);
-	EXPECT(lz_error_message()[0] != '\0', "refusing %s, lz_error must say why", why);
-	EXPECT(nl->cur == cur && lz_nlist_entries(nl) == entries, "refusing %s, the list "
+	LZ_REQUIRE(lz_error_message()[0] != '\0', "refusing %s, lz_error must say why", why);
+	LZ_REQUIRE(nl->cur == cur && lz_nlist_entries(nl) == entries, "refusing %s, the list "
 	              "in use changed: a refused build must leave it alone", why);
 }
 
 LZ_TEST(cells_refuses_a_grid_that_cannot_work)
 {
-	gsl_rng *g = rng_new(61);
+	gsl_rng *g = lz_test_rng(61);
 	enum { N = 50 };
 	int32_t r[N * 3];
 	rand_sites(g, 2, 64, N, r);
@@ -721,7 +708,7 @@ LZ_TEST(cells_refuses_a_grid_that_cannot_work)
 	 * r_l = 7.5, stored out of row order. */
 	lz_cells *right = grid_new(2, 64, 8, 1, g);
 	grid_bin(right, N, r);
-	EXPECT(lz_nlist_build_cells(nl, right, r) == LZ_OK, "lz_nlist_build_cells refused "
+	LZ_REQUIRE(lz_nlist_build_cells(nl, right, r) == LZ_OK, "lz_nlist_build_cells refused "
 	       "cells of side 8 for r_l = 7.5 on the square lattice, exactly its reach ceil(7.5) "
 	       "= 8: a pair within r_l differs by at most 7 < 8 on each axis, so it sits in "
 	       "touching cells and the grid is fine (refuse only width < reach): %s",
@@ -752,7 +739,7 @@ LZ_TEST(cells_million_particles_2d)
 {
 	enum { L = 2048 };
 	const size_t n = 1000000;
-	gsl_rng *g = rng_new(67);
+	gsl_rng *g = lz_test_rng(67);
 	int32_t *r = malloc(2 * n * sizeof *r);
 	uint8_t *occ = calloc((size_t)L * L, 1);
 	uint32_t *stamp = calloc(n, sizeof *stamp);
@@ -760,7 +747,7 @@ LZ_TEST(cells_million_particles_2d)
 	rand_sites(g, 2, L, n, r);
 	for (size_t i = 0; i < n; i++) {
 		uint8_t *o = occ + (size_t)r[2 * i] + (size_t)L * (size_t)r[2 * i + 1];
-		EXPECT(*o < 255, "test set-up: a site holds 255 particles");
+		LZ_REQUIRE(*o < 255, "test set-up: a site holds 255 particles");
 		(*o)++;
 	}
 	size_t want = 0;
@@ -777,7 +764,7 @@ LZ_TEST(cells_million_particles_2d)
 	lz_nlist *nl = nl_new(b, n, 3);
 	lz_cells *c = grid_new(2, L, 4, 0, g);
 	grid_bin(c, n, r);
-	EXPECT(lz_nlist_build_cells(nl, c, r) == LZ_OK, "a million particles: %s",
+	LZ_REQUIRE(lz_nlist_build_cells(nl, c, r) == LZ_OK, "a million particles: %s",
 	              lz_error_message());
 	const char *what = "a million particles from cells (L = 2048, r_l = 3)";
 	for (size_t i = 0; i < n; i++) {
@@ -785,14 +772,14 @@ LZ_TEST(cells_million_particles_2d)
 		const uint32_t *row = lz_nlist_row(nl, i, &len);
 		for (size_t k = 0; k < len; k++) {
 			uint32_t j = row[k];
-			EXPECT(j < n && j != i, "%s: row %zu holds %u (a self entry or no "
+			LZ_REQUIRE(j < n && j != i, "%s: row %zu holds %u (a self entry or no "
 			              "particle)", what, i, j);
-			EXPECT(stamp[j] != i + 1, "%s: particle %u twice on the row of %zu: a "
+			LZ_REQUIRE(stamp[j] != i + 1, "%s: particle %u twice on the row of %zu: a "
 			              "duplicate", what, j, i);
 			stamp[j] = (uint32_t)(i + 1);
 			int64_t dx = bf_near(r[2 * i] - r[2 * j], L);
 			int64_t dy = bf_near(r[2 * i + 1] - r[2 * j + 1], L);
-			EXPECT(dx * dx + dy * dy < 9, "%s: particle %u on the row of %zu at "
+			LZ_REQUIRE(dx * dx + dy * dy < 9, "%s: particle %u on the row of %zu at "
 			              "distance² %lld, not below r_l² = 9", what, j, i,
 			              (long long)(dx * dx + dy * dy));
 			size_t lj;
@@ -800,11 +787,11 @@ LZ_TEST(cells_million_particles_2d)
 			int found = 0;
 			for (size_t q = 0; q < lj && !found; q++)
 				found = back[q] == i;
-			EXPECT(found, "%s: %u is on the row of %zu but %zu is not on the row of "
+			LZ_REQUIRE(found, "%s: %u is on the row of %zu but %zu is not on the row of "
 			              "%u: the list must be symmetric", what, j, i, i, j);
 		}
 	}
-	EXPECT(lz_nlist_entries(nl) == want, "%s: %zu entries, but the particles have "
+	LZ_REQUIRE(lz_nlist_entries(nl) == want, "%s: %zu entries, but the particles have "
 	              "%zu neighbours within r_l in all (counted site by site): pairs are missing",
 	              what, lz_nlist_entries(nl), want);
 	free(stamp);
@@ -833,7 +820,7 @@ static size_t entered_via_common(const uint8_t *old, const uint8_t *now, size_t 
 			int common = 0;
 			for (size_t k = 0; k < n && !common; k++)
 				common = old[i * n + k] && old[k * n + j];
-			EXPECT(common, "test set-up (%s): pair %zu-%zu entered r_l without a "
+			LZ_REQUIRE(common, "test set-up (%s): pair %zu-%zu entered r_l without a "
 			              "common neighbour; the fast refresh is not exact here", what, i, j);
 		}
 	return entered;
@@ -856,7 +843,7 @@ LZ_TEST(refresh_dense_random_moves_equals_rebuild)
 		{LZ_LATTICE_TRIANGULAR, 128, 4, 16, 0.45},
 		{LZ_LATTICE_CUBIC, 32, 3, 8, 0.35},
 	};
-	gsl_rng *g = rng_new(71);
+	gsl_rng *g = lz_test_rng(71);
 	for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
 		lz_lattice_kind kind = cs[k].kind;
 		int dim = kdim(kind);
@@ -865,7 +852,7 @@ LZ_TEST(refresh_dense_random_moves_equals_rebuild)
 		double one = dim == 2 ? M_PI * sigma * sigma / 4 : M_PI * pow(sigma, 3) / 6;
 		size_t n = (size_t)(cs[k].packing * vol / one);
 		int32_t *r = malloc(n * (size_t)dim * sizeof *r);
-		EXPECT(rsa_sites(g, kind, cs[k].L, sigma * sigma, n, r) == n, "test set-up: "
+		LZ_REQUIRE(rsa_sites(g, kind, cs[k].L, sigma * sigma, n, r) == n, "test set-up: "
 		              "could not place %zu hard particles", n);
 		lz_lattice_box *b = box_new(kind, cs[k].L);
 		lz_nlist *nl = nl_new(b, n, cs[k].rl);
@@ -877,20 +864,20 @@ LZ_TEST(refresh_dense_random_moves_equals_rebuild)
 			snprintf(what, sizeof what, "refresh %d after moves of at most 2 steps, %zu hard "
 			         "particles of diameter %d at packing %.2f on the %s lattice, r_l = %g",
 			         round, n, (int)sigma, cs[k].packing, lz_lattice_name(kind), cs[k].rl);
-			EXPECT(hard_moves(g, kind, cs[k].L, sigma * sigma, n, r, 2) > n / 4, "test set-up: "
+			LZ_REQUIRE(hard_moves(g, kind, cs[k].L, sigma * sigma, n, r, 2) > n / 4, "test set-up: "
 			       "the particles hardly move");
 			uint8_t *old = want;
 			want = bf_matrix(kind, cs[k].L, n, r, nl->rl2);
 			entered += entered_via_common(old, want, n, what);
 			free(old);
 			int cur = nl->cur;
-			EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
-			EXPECT(nl->cur == !cur, "%s: cur went from %d to %d; a refresh writes the "
+			LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+			LZ_REQUIRE(nl->cur == !cur, "%s: cur went from %d to %d; a refresh writes the "
 			              "target buf[!cur] and then flips cur", what, cur, nl->cur);
 			check_list(nl, r, want, what);
 			check_marks_clear(nl, what);
 		}
-		EXPECT(entered > 0, "test set-up: no pair entered r_l");
+		LZ_REQUIRE(entered > 0, "test set-up: no pair entered r_l");
 		free(want);
 		free(r);
 		lz_nlist_free(nl);
@@ -923,7 +910,7 @@ LZ_TEST(refresh_fig27_second_copy_keeps_c)
 		}
 		uint8_t *w0 = bf_matrix(LZ_LATTICE_SQUARE, 64, N, r0, 25);
 		uint8_t *w1 = bf_matrix(LZ_LATTICE_SQUARE, 64, N, r1, 25);
-		EXPECT(w0[0 * N + 1] && w0[0 * N + 2] && !w0[1 * N + 2] && w0[0 * N + 3] &&
+		LZ_REQUIRE(w0[0 * N + 1] && w0[0 * N + 2] && !w0[1 * N + 2] && w0[0 * N + 3] &&
 		       w0[1 * N + 3] && w1[0 * N + 1] && w1[1 * N + 2] && !w1[0 * N + 2] &&
 		       w1[0 * N + 3] && !w1[1 * N + 3] && !w1[2 * N + 3] &&
 		       bf_min_d2(LZ_LATTICE_SQUARE, 64, r1 + 2, r1 + 6) == 25,
@@ -934,7 +921,7 @@ LZ_TEST(refresh_fig27_second_copy_keeps_c)
 		ck_assert(lz_nlist_refresh_single(one, r1) == LZ_OK);
 		size_t len;
 		const uint32_t *row = lz_nlist_row(one, 1, &len);
-		EXPECT(len == 1 && row[0] == 0, "test set-up: the one-copy refresh should have "
+		LZ_REQUIRE(len == 1 && row[0] == 0, "test set-up: the one-copy refresh should have "
 		              "lost C from B's row");
 		lz_nlist_free(one);
 
@@ -944,12 +931,12 @@ LZ_TEST(refresh_fig27_second_copy_keeps_c)
 		                       "from A's range into B's, D to exactly r_l from B"
 		                     : "thesis fig. 2.7: C moved from A's range into B's, D to "
 		                       "exactly r_l from B";
-		EXPECT(lz_nlist_refresh(nl, r1) == LZ_OK, "%s: %s", what, lz_error_message());
+		LZ_REQUIRE(lz_nlist_refresh(nl, r1) == LZ_OK, "%s: %s", what, lz_error_message());
 		row = lz_nlist_row(nl, 1, &len);
 		int has_c = 0;
 		for (size_t k = 0; k < len; k++)
 			has_c |= row[k] == 2;
-		EXPECT(has_c, "%s: C (particle 2) is 3 from B (particle 1) but not on B's new "
+		LZ_REQUIRE(has_c, "%s: C (particle 2) is 3 from B (particle 1) but not on B's new "
 		              "row. B's source row holds A, and A's SOURCE row holds C: read the old "
 		              "rows only (the source buf[cur]), never the rows being rewritten", what);
 		check_list(nl, r1, w1, what);
@@ -964,7 +951,7 @@ END_TEST
 
 LZ_TEST(refresh_never_writes_the_source)
 {
-	gsl_rng *g = rng_new(73);
+	gsl_rng *g = lz_test_rng(73);
 	enum { L = 64 };
 	const int64_t sigma2 = 16;
 	size_t n = 150;
@@ -990,10 +977,10 @@ LZ_TEST(refresh_never_writes_the_source)
 		memcpy(start, s->start, (n + 1) * sizeof *start);
 		uint32_t *idx = malloc((len + 1) * sizeof *idx);
 		memcpy(idx, s->idx, len * sizeof *idx);
-		EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s", lz_error_message());
-		EXPECT(nl->cur == !cur, "refresh %d: cur went from %d to %d; the refresh "
+		LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s", lz_error_message());
+		LZ_REQUIRE(nl->cur == !cur, "refresh %d: cur went from %d to %d; the refresh "
 		              "writes the target buf[!cur] and then flips cur", round + 1, cur, nl->cur);
-		EXPECT(s->len == len && memcmp(start, s->start, (n + 1) * sizeof *start) == 0 &&
+		LZ_REQUIRE(s->len == len && memcmp(start, s->start, (n + 1) * sizeof *start) == 0 &&
 		              memcmp(idx, s->idx, len * sizeof *idx) == 0, "refresh %d wrote into its "
 		              "source buf[%d]: rows must be read from the old lists and written to the "
 		              "other copy only (thesis fig. 2.7: a row rewritten in place hides the "
@@ -1039,7 +1026,7 @@ static void check_no_outsider(const lz_nlist *nl, const uint8_t *now, const uint
 		const uint32_t *row = lz_nlist_row(nl, i, &len);
 		for (size_t k = 0; k < len; k++) {
 			uint32_t j = row[k];
-			EXPECT(j >= n || !now[i * n + j] || want[i * n + j], "%s: particle %u came "
+			LZ_REQUIRE(j >= n || !now[i * n + j] || want[i * n + j], "%s: particle %u came "
 			       "within r_l of %zu and is on its row, but it was on neither %zu's source "
 			       "row nor the source row of any particle there: the refresh reads only "
 			       "those rows and must miss such a pair (lz/nlist.h, the bet on density) — "
@@ -1056,7 +1043,7 @@ static void check_no_outsider(const lz_nlist *nl, const uint8_t *now, const uint
 LZ_TEST(refresh_dilute_gas_keeps_to_the_neighbours_of_neighbours)
 {
 	enum { L = 64, N = 60 };
-	gsl_rng *g = rng_new(83);
+	gsl_rng *g = lz_test_rng(83);
 	int32_t r[2 * N];
 	rand_sites(g, 2, L, N, r);
 	lz_lattice_box *b = box_new(LZ_LATTICE_SQUARE, L);
@@ -1075,7 +1062,7 @@ LZ_TEST(refresh_dilute_gas_keeps_to_the_neighbours_of_neighbours)
 			lost += now[k] && !want[k];
 			found += want[k] && !src[k];
 		}
-		EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+		LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
 		check_no_outsider(nl, now, want, what);
 		check_list(nl, r, want, what);
 		check_marks_clear(nl, what);
@@ -1083,7 +1070,7 @@ LZ_TEST(refresh_dilute_gas_keeps_to_the_neighbours_of_neighbours)
 		free(src);
 		src = want;
 	}
-	EXPECT(lost > 0 && found > 0, "test set-up: %zu entries lost, %zu found through a "
+	LZ_REQUIRE(lost > 0 && found > 0, "test set-up: %zu entries lost, %zu found through a "
 	       "neighbour's row; both must happen", lost, found);
 	free(src);
 	lz_nlist_free(nl);
@@ -1109,7 +1096,7 @@ LZ_TEST(refresh_no_self_no_duplicates_in_clusters)
 	 * candidates through Z, and must still be refused. */
 	static const int32_t xyz[] = {40, 40, 46, 40, 43, 42};
 	memcpy(r + 2 * PER * NCL, xyz, sizeof xyz);
-	gsl_rng *g = rng_new(79);
+	gsl_rng *g = lz_test_rng(79);
 	lz_lattice_box *b = box_new(LZ_LATTICE_SQUARE, L);
 	lz_nlist *nl = nl_new(b, N, 6);
 	uint8_t *want = bf_matrix(LZ_LATTICE_SQUARE, L, N, r, nl->rl2);
@@ -1124,7 +1111,7 @@ LZ_TEST(refresh_no_self_no_duplicates_in_clusters)
 		want = bf_matrix(LZ_LATTICE_SQUARE, L, N, r, nl->rl2);
 		entered_via_common(old, want, N, what);
 		free(old);
-		EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+		LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
 		check_list(nl, r, want, what);
 		check_marks_clear(nl, what);
 	}
@@ -1151,18 +1138,18 @@ static void three_across_the_edge(const lz_lattice_box *b)
 	fill_list(nl, star);
 	const char *what = "refresh of A, B, C across the box's edge: C left A's range for B's "
 	                   "(fig. 2.7; B's source row holds A, A's source row holds C)";
-	EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
 	check_list(nl, r, chain, what);
 	check_marks_clear(nl, what);
 	r[4] = 63;
 	what = "refresh of A, B, C across the box's edge: C came back within r_l of A (√2), "
 	       "through their common neighbour B";
-	EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
 	check_list(nl, r, all, what);
 	check_marks_clear(nl, what);
 	what = "refresh of A, B, C, all three neighbours, without a move (every one met twice "
 	       "on the rows scanned: listed once)";
-	EXPECT(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, r) == LZ_OK, "%s: %s", what, lz_error_message());
 	check_list(nl, r, all, what);
 	check_marks_clear(nl, what);
 	lz_nlist_free(nl);
@@ -1175,7 +1162,7 @@ LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 	int32_t one[2] = {0, 63};
 	uint8_t none[4] = {0};
 	fill_list(nl, none);
-	EXPECT(lz_nlist_refresh(nl, one) == LZ_OK, "%s", lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, one) == LZ_OK, "%s", lz_error_message());
 	check_list(nl, one, none, "refresh of a single particle (its row stays empty)");
 	lz_nlist_free(nl);
 
@@ -1185,7 +1172,7 @@ LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 	nl = nl_new(b, 2, 3);
 	int32_t lone[4] = {10, 10, 12, 11};
 	fill_list(nl, none);
-	EXPECT(lz_nlist_refresh(nl, lone) == LZ_OK, "%s", lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, lone) == LZ_OK, "%s", lz_error_message());
 	check_list(nl, lone, none, "refresh of two particles whose source rows are empty, now √5 "
 	           "apart (r_l = 3): an empty row gains nobody, the refresh reads only the source "
 	           "rows (is it rebuilding from all pairs?)");
@@ -1199,11 +1186,11 @@ LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 	fill_list(nl, pair);
 	two[0] = 63;
 	two[2] = 1;
-	EXPECT(lz_nlist_refresh(nl, two) == LZ_OK, "%s", lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, two) == LZ_OK, "%s", lz_error_message());
 	check_list(nl, two, pair, "refresh of two neighbours that swapped sides across the box's "
 	           "edge (distance 2 < r_l = 3)");
 	two[2] = 60;
-	EXPECT(lz_nlist_refresh(nl, two) == LZ_OK, "%s", lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, two) == LZ_OK, "%s", lz_error_message());
 	check_list(nl, two, none, "refresh of two particles that moved √10 apart (r_l = 3: no "
 	           "longer neighbours)");
 	check_marks_clear(nl, "refresh of two particles");
@@ -1212,7 +1199,7 @@ LZ_TEST(refresh_one_particle_and_a_pair_across_the_boundary)
 	int32_t edge[4] = {1, 5, 63, 5};
 	fill_list(nl, pair);
 	edge[2] = 62;
-	EXPECT(lz_nlist_refresh(nl, edge) == LZ_OK, "%s", lz_error_message());
+	LZ_REQUIRE(lz_nlist_refresh(nl, edge) == LZ_OK, "%s", lz_error_message());
 	check_list(nl, edge, none, "refresh of two neighbours that moved to exactly r_l = 3 apart "
 	           "across the box's edge (d < r_l strictly: no longer neighbours)");
 	lz_nlist_free(nl);

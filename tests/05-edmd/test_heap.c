@@ -19,19 +19,9 @@
 #include "lz/heap.h"
 #include "lztest.h"
 
-/* Every check here is LZ_REQUIRE (lztest.h): silent until it fails. Check records
- * each ck_assert that passes, and many of these checks sit in loops or in helpers
- * called thousands of times, which would flood the grader's file limit. */
-#define CHECK LZ_REQUIRE
 
 #define POISON_T (-1e300)
 
-static gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
 
 /* 0 .. n-1 in random order. */
 static void shuffled(uint32_t *a, size_t n, gsl_rng *r)
@@ -62,7 +52,7 @@ typedef struct {
 static model model_new(size_t cap)
 {
 	model m = {cap, calloc(cap, sizeof(double)), calloc(cap, sizeof(int))};
-	CHECK(m.key && m.in, "out of memory for the test's model of %zu items", cap);
+	LZ_REQUIRE(m.key && m.in, "out of memory for the test's model of %zu items", cap);
 	return m;
 }
 
@@ -89,23 +79,23 @@ static void check_heap(const lz_heap *h, const model *m, const char *after)
 	size_t in = 0;
 	for (size_t id = 0; id < m->cap; id++)
 		in += m->in[id] != 0;
-	CHECK(h->n == in, "after %s the heap holds n = %zu nodes, expected %zu items", after,
+	LZ_REQUIRE(h->n == in, "after %s the heap holds n = %zu nodes, expected %zu items", after,
 	      h->n, in);
 	for (size_t k = 0; k < h->n; k++) {
 		uint32_t id = h->node[k].id;
-		CHECK(id < m->cap, "after %s node %zu holds id %u, which is not an item (cap %zu): "
+		LZ_REQUIRE(id < m->cap, "after %s node %zu holds id %u, which is not an item (cap %zu): "
 		      "was a node read from beyond the end of the heap?", after, k, id, m->cap);
-		CHECK(m->in[id], "after %s node %zu holds item %u, which should not be in the heap",
+		LZ_REQUIRE(m->in[id], "after %s node %zu holds item %u, which should not be in the heap",
 		      after, k, id);
-		CHECK(h->pos[id] == k, "after %s node %zu holds item %u but pos[%u] = %u: every node "
+		LZ_REQUIRE(h->pos[id] == k, "after %s node %zu holds item %u but pos[%u] = %u: every node "
 		      "that moves must have its pos[] written", after, k, id, id, h->pos[id]);
-		CHECK(h->node[k].t == m->key[id] ||
+		LZ_REQUIRE(h->node[k].t == m->key[id] ||
 		              (isnan(h->node[k].t) && isnan(m->key[id])),
 		      "after %s item %u has the key %.17g in the heap, expected %.17g: a key travelled "
 		      "without its id", after, id, h->node[k].t, m->key[id]);
 		if (k > 0) {
 			size_t p = (k - 1) / 2;
-			CHECK(!(h->node[k].t < h->node[p].t),
+			LZ_REQUIRE(!(h->node[k].t < h->node[p].t),
 			      "after %s the heap order is broken: node %zu (item %u, t = %.17g) is "
 			      "earlier than its parent node %zu (item %u, t = %.17g)", after, k, id,
 			      h->node[k].t, p, h->node[p].id, h->node[p].t);
@@ -113,14 +103,14 @@ static void check_heap(const lz_heap *h, const model *m, const char *after)
 	}
 	for (size_t id = 0; id < m->cap; id++)
 		if (!m->in[id])
-			CHECK(h->pos[id] == LZ_HEAP_NONE, "after %s item %zu is not in the heap but "
+			LZ_REQUIRE(h->pos[id] == LZ_HEAP_NONE, "after %s item %zu is not in the heap but "
 			      "pos[%zu] = %u, expected LZ_HEAP_NONE", after, id, id, h->pos[id]);
 }
 
 static lz_heap *heap_new(size_t cap)
 {
 	lz_heap *h = lz_heap_alloc(cap);
-	CHECK(h != NULL, "lz_heap_alloc(%zu): %s", cap, lz_error_message());
+	LZ_REQUIRE(h != NULL, "lz_heap_alloc(%zu): %s", cap, lz_error_message());
 	poison(h);
 	return h;
 }
@@ -133,7 +123,7 @@ static void hand_heap(lz_heap *h, model *m, size_t n, gsl_rng *r)
 	lz_heap_clear(h);
 	memset(m->in, 0, m->cap * sizeof *m->in);
 	uint32_t *ids = malloc(m->cap * sizeof *ids);
-	CHECK(ids, "out of memory for %zu item numbers", m->cap);
+	LZ_REQUIRE(ids, "out of memory for %zu item numbers", m->cap);
 	shuffled(ids, m->cap, r);
 	for (size_t k = 0; k < n; k++) {
 		double t = k == 0 ? gsl_rng_uniform(r) : h->node[(k - 1) / 2].t;
@@ -177,7 +167,7 @@ LZ_TEST(heap_sift_up_moves_an_earlier_key_to_its_place)
 	listed_heap(h, &m, tens, 7, 0);
 	h->node[6].t = m.key[6] = 5;
 	lz_heap_sift_up(h, 6);
-	CHECK(h->node[0].id == 6 && h->node[2].id == 0 && h->node[6].id == 2,
+	LZ_REQUIRE(h->node[0].id == 6 && h->node[2].id == 0 && h->node[6].id == 2,
 	      "sift_up from the last leaf (key 5, ancestors 30 at node 2 and 10 at the root): "
 	      "expected items (6, 0, 2) at nodes (0, 2, 6), got (%u, %u, %u) — the node must "
 	      "climb while its parent is later", h->node[0].id, h->node[2].id, h->node[6].id);
@@ -186,7 +176,7 @@ LZ_TEST(heap_sift_up_moves_an_earlier_key_to_its_place)
 	 * under node 1 (item 1, 20) under the root (item 6, 5) gets 15 */
 	h->node[4].t = m.key[4] = 15;
 	lz_heap_sift_up(h, 4);
-	CHECK(h->node[0].id == 6 && h->node[1].id == 4 && h->node[4].id == 1,
+	LZ_REQUIRE(h->node[0].id == 6 && h->node[1].id == 4 && h->node[4].id == 1,
 	      "sift_up of key 15 from node 4 (parent 20, root 5): expected items (6, 4, 1) at "
 	      "nodes (0, 1, 4), got (%u, %u, %u) — it must stop below the earlier root",
 	      h->node[0].id, h->node[1].id, h->node[4].id);
@@ -196,12 +186,12 @@ LZ_TEST(heap_sift_up_moves_an_earlier_key_to_its_place)
 	memcpy(before, h->node, sizeof before);
 	lz_heap_sift_up(h, 5);
 	lz_heap_sift_up(h, 0);
-	CHECK(memcmp(before, h->node, sizeof before) == 0,
+	LZ_REQUIRE(memcmp(before, h->node, sizeof before) == 0,
 	      "sift_up of a node no earlier than its parent (and of the root) changed the heap");
 	check_heap(h, &m, "sift_up of nodes already in place");
 
 	/* random heaps: any node given any key no later than its old one */
-	gsl_rng *r = rng_new(501);
+	gsl_rng *r = lz_test_rng(501);
 	lz_heap *g = heap_new(300);
 	model mg = model_new(300);
 	for (int trial = 0; trial < 3000; trial++) {
@@ -242,7 +232,7 @@ LZ_TEST(heap_sift_down_follows_the_earlier_child)
 	listed_heap(h, &m, tens, 7, 0);
 	h->node[0].t = m.key[0] = 65;
 	lz_heap_sift_down(h, 0);
-	CHECK(h->node[0].id == 1 && h->node[1].id == 3 && h->node[3].id == 0,
+	LZ_REQUIRE(h->node[0].id == 1 && h->node[1].id == 3 && h->node[3].id == 0,
 	      "sift_down of key 65 from the root (children 20 and 30, then 40 and 50): expected "
 	      "items (1, 3, 0) at nodes (0, 1, 3), got (%u, %u, %u) — the node must swap with the "
 	      "EARLIER child", h->node[0].id, h->node[1].id, h->node[3].id);
@@ -252,7 +242,7 @@ LZ_TEST(heap_sift_down_follows_the_earlier_child)
 	uint32_t left = h->node[5].id, right = h->node[6].id;
 	h->node[6].t = m.key[right] = 55;
 	lz_heap_sift_down(h, 2);
-	CHECK(h->node[2].id == right && h->node[6].t == 100,
+	LZ_REQUIRE(h->node[2].id == right && h->node[6].t == 100,
 	      "sift_down of key 100 from node 2 with children 60 (left) and 55 (right): the "
 	      "right child (item %u) should move up, got item %u at node 2 (left child is item %u)",
 	      right, h->node[2].id, left);
@@ -266,7 +256,7 @@ LZ_TEST(heap_sift_down_follows_the_earlier_child)
 	listed_heap(g, &mg, keys, 6, 0);
 	g->node[2].t = mg.key[2] = 9;
 	lz_heap_sift_down(g, 2);
-	CHECK(g->node[2].id == 5 && g->node[5].id == 2,
+	LZ_REQUIRE(g->node[2].id == 5 && g->node[5].id == 2,
 	      "sift_down of key 9 from node 2 of 6 nodes (its only child is node 5, key 6): "
 	      "expected items (5, 2) at nodes (2, 5), got (%u, %u) — node 6 is beyond n",
 	      g->node[2].id, g->node[5].id);
@@ -277,11 +267,11 @@ LZ_TEST(heap_sift_down_follows_the_earlier_child)
 	lz_heap_sift_down(g, 5);
 	lz_heap_sift_down(g, 4);
 	lz_heap_sift_down(g, 0);
-	CHECK(memcmp(before, g->node, sizeof before) == 0,
+	LZ_REQUIRE(memcmp(before, g->node, sizeof before) == 0,
 	      "sift_down of leaves and of a root earlier than its children changed the heap");
 
 	/* random heaps: any node given any key no earlier than its old one */
-	gsl_rng *r = rng_new(502);
+	gsl_rng *r = lz_test_rng(502);
 	lz_heap *q = heap_new(300);
 	model mq = model_new(300);
 	for (int trial = 0; trial < 3000; trial++) {
@@ -316,7 +306,7 @@ END_TEST
 
 LZ_TEST(heap_push_keeps_order_and_index)
 {
-	gsl_rng *r = rng_new(503);
+	gsl_rng *r = lz_test_rng(503);
 	lz_heap *h = heap_new(500);
 	model m = model_new(500);
 	/* decreasing keys: each push climbs to the root */
@@ -325,7 +315,7 @@ LZ_TEST(heap_push_keeps_order_and_index)
 		lz_heap_push(h, id, t);
 		m.key[id] = t;
 		m.in[id] = 1;
-		CHECK(lz_heap_top(h) == id && lz_heap_top_t(h) == t,
+		LZ_REQUIRE(lz_heap_top(h) == id && lz_heap_top_t(h) == t,
 		      "pushed item %u with key %g, the earliest so far: the top is item %u (%g)", id,
 		      t, lz_heap_top(h), lz_heap_top_t(h));
 		check_heap(h, &m, "a push of the earliest key");
@@ -344,7 +334,7 @@ LZ_TEST(heap_push_keeps_order_and_index)
 		lz_heap_push(h, id, t);
 		m.key[id] = t;
 		m.in[id] = 1;
-		CHECK(lz_heap_contains(h, id), "item %u was pushed but lz_heap_contains says it is "
+		LZ_REQUIRE(lz_heap_contains(h, id), "item %u was pushed but lz_heap_contains says it is "
 		      "not in the heap (pos[%u] = %u)", id, id, h->pos[id]);
 		char what[64];
 		snprintf(what, sizeof what, "push %zu of item %u (t = %g)", k + 1, id, t);
@@ -360,11 +350,11 @@ END_TEST
 
 LZ_TEST(heap_pop_returns_keys_in_sorted_order)
 {
-	gsl_rng *r = rng_new(504);
+	gsl_rng *r = lz_test_rng(504);
 	lz_heap *h = heap_new(400);
 	model m = model_new(400);
 	double *sorted = malloc(400 * sizeof *sorted);
-	CHECK(sorted, "out of memory for the sorted keys");
+	LZ_REQUIRE(sorted, "out of memory for the sorted keys");
 	for (int trial = 0; trial < 200; trial++) {
 		size_t n = trial < 3 ? (size_t)trial + 1 : 1 + gsl_rng_uniform_int(r, 400);
 		hand_heap(h, &m, n, r);
@@ -376,14 +366,14 @@ LZ_TEST(heap_pop_returns_keys_in_sorted_order)
 		for (size_t q = 0; q < n; q++) {
 			uint32_t top = lz_heap_top(h);
 			uint32_t id = lz_heap_pop(h);
-			CHECK(id == top, "lz_heap_pop returned item %u but the top was item %u", id, top);
-			CHECK(id < m.cap && m.in[id], "pop %zu of %zu returned item %u, which was not in "
+			LZ_REQUIRE(id == top, "lz_heap_pop returned item %u but the top was item %u", id, top);
+			LZ_REQUIRE(id < m.cap && m.in[id], "pop %zu of %zu returned item %u, which was not in "
 			      "the heap", q + 1, n, id);
-			CHECK(m.key[id] == sorted[q], "pop %zu of a heap of %zu returned item %u with key "
+			LZ_REQUIRE(m.key[id] == sorted[q], "pop %zu of a heap of %zu returned item %u with key "
 			      "%.17g, but the %zu-th smallest key is %.17g: pops must come out in the "
 			      "order of a sort", q + 1, n, id, m.key[id], q + 1, sorted[q]);
 			m.in[id] = 0;
-			CHECK(h->pos[id] == LZ_HEAP_NONE, "item %u was popped but pos[%u] = %u, expected "
+			LZ_REQUIRE(h->pos[id] == LZ_HEAP_NONE, "item %u was popped but pos[%u] = %u, expected "
 			      "LZ_HEAP_NONE (the item is out)", id, id, h->pos[id]);
 			char what[64];
 			snprintf(what, sizeof what, "pop %zu of a heap of %zu", q + 1, n);
@@ -408,21 +398,21 @@ LZ_TEST(heap_update_moves_keys_earlier_and_later)
 	listed_heap(h, &m, keys, 7, 1);  /* item 6 at the root */
 	lz_heap_update(h, 6, 10);  /* item 6 was the root (key 1) */
 	m.key[6] = 10;
-	CHECK(h->node[0].id == 5 && h->pos[6] >= 3,
+	LZ_REQUIRE(h->node[0].id == 5 && h->pos[6] >= 3,
 	      "update of the root item 6 from key 1 to 10 (later than everything): it should sink "
 	      "to a leaf and item 5 (key 2) become the top; the top is item %u, item 6 at node %u",
 	      h->node[0].id, h->pos[6]);
 	check_heap(h, &m, "update of the root to a later key");
 	lz_heap_update(h, 0, 0.5);  /* item 0 was a leaf (key 7) */
 	m.key[0] = 0.5;
-	CHECK(h->node[0].id == 0, "update of leaf item 0 from key 7 to 0.5 (earlier than "
+	LZ_REQUIRE(h->node[0].id == 0, "update of leaf item 0 from key 7 to 0.5 (earlier than "
 	      "everything): it should become the top, the top is item %u (key %g)", h->node[0].id,
 	      h->node[0].t);
 	check_heap(h, &m, "update of a leaf to an earlier key");
 	lz_heap_update(h, 3, m.key[3]);  /* the same key: nothing to do */
 	check_heap(h, &m, "update to the same key");
 
-	gsl_rng *r = rng_new(505);
+	gsl_rng *r = lz_test_rng(505);
 	lz_heap *g = heap_new(256);
 	model mg = model_new(256);
 	for (int trial = 0; trial < 300; trial++) {
@@ -472,7 +462,7 @@ LZ_TEST(heap_random_operations_match_a_sorted_list)
 	 * the smallest of those in (found by a scan), and at the end the pops must come
 	 * out as qsort orders the remaining keys */
 	enum { CAP = 600, OPS = 200000 };
-	gsl_rng *r = rng_new(506);
+	gsl_rng *r = lz_test_rng(506);
 	lz_heap *h = heap_new(CAP);
 	model m = model_new(CAP);
 	size_t nin = 0;
@@ -494,9 +484,9 @@ LZ_TEST(heap_random_operations_match_a_sorted_list)
 				if (m.in[i] && m.key[i] < least)
 					least = m.key[i];
 			uint32_t id = lz_heap_pop(h);
-			CHECK(id < CAP && m.in[id], "operation %ld: lz_heap_pop returned item %u, which is "
+			LZ_REQUIRE(id < CAP && m.in[id], "operation %ld: lz_heap_pop returned item %u, which is "
 			      "not in the heap", op, id);
-			CHECK(m.key[id] == least, "operation %ld: lz_heap_pop returned item %u with key "
+			LZ_REQUIRE(m.key[id] == least, "operation %ld: lz_heap_pop returned item %u with key "
 			      "%.17g, but the earliest key in the heap is %.17g", op, id, m.key[id], least);
 			m.in[id] = 0;
 			nin--;
@@ -514,7 +504,7 @@ LZ_TEST(heap_random_operations_match_a_sorted_list)
 	}
 	check_heap(h, &m, "200000 random operations");
 	double *sorted = malloc(CAP * sizeof *sorted);
-	CHECK(sorted, "out of memory for the sorted keys");
+	LZ_REQUIRE(sorted, "out of memory for the sorted keys");
 	size_t k = 0;
 	for (size_t i = 0; i < CAP; i++)
 		if (m.in[i])
@@ -522,12 +512,12 @@ LZ_TEST(heap_random_operations_match_a_sorted_list)
 	qsort(sorted, k, sizeof *sorted, cmp_double);
 	for (size_t q = 0; q < k; q++) {
 		uint32_t id = lz_heap_pop(h);
-		CHECK(id < CAP && m.in[id] && m.key[id] == sorted[q],
+		LZ_REQUIRE(id < CAP && m.in[id] && m.key[id] == sorted[q],
 		      "emptying the heap: pop %zu of %zu gave item %u (key %.17g), expected the key "
 		      "%.17g", q + 1, k, id, id < CAP ? m.key[id] : NAN, sorted[q]);
 		m.in[id] = 0;
 	}
-	CHECK(h->n == 0, "after popping all %zu items the heap holds n = %zu", k, h->n);
+	LZ_REQUIRE(h->n == 0, "after popping all %zu items the heap holds n = %zu", k, h->n);
 	free(sorted);
 	gsl_rng_free(r);
 	model_free(&m);
@@ -540,7 +530,7 @@ LZ_TEST(heap_ties_and_infinite_keys)
 	/* 300 items with one key, then infinity for half of them: every item must come
 	 * out exactly once, the finite ones first */
 	enum { CAP = 300 };
-	gsl_rng *r = rng_new(507);
+	gsl_rng *r = lz_test_rng(507);
 	lz_heap *h = heap_new(CAP);
 	model m = model_new(CAP);
 	uint32_t order[CAP];
@@ -561,11 +551,11 @@ LZ_TEST(heap_ties_and_infinite_keys)
 	for (size_t q = 0; q < CAP; q++) {
 		double top = lz_heap_top_t(h);
 		uint32_t id = lz_heap_pop(h);
-		CHECK(id < CAP && !seen[id], "pop %zu of 300 (keys 2.5 and infinity) returned item %u "
+		LZ_REQUIRE(id < CAP && !seen[id], "pop %zu of 300 (keys 2.5 and infinity) returned item %u "
 		      "%s", q + 1, id, id < CAP ? "a second time" : "(not an item)");
 		seen[id] = 1;
 		double want = q < CAP / 2 ? 2.5 : INFINITY;
-		CHECK(m.key[id] == want && top == want, "pop %zu of 300 gave item %u with key %g (top "
+		LZ_REQUIRE(m.key[id] == want && top == want, "pop %zu of 300 gave item %u with key %g (top "
 		      "key %g), expected %g: the 150 finite keys come out before the 150 infinite",
 		      q + 1, id, m.key[id], top, want);
 		m.in[id] = 0;
@@ -580,12 +570,12 @@ LZ_TEST(heap_ties_and_infinite_keys)
 	}
 	lz_heap_update(h, 3, 1.0);
 	m.key[3] = 1.0;
-	CHECK(lz_heap_top(h) == 3, "four keys at infinity and item 3 updated to 1: the top is "
+	LZ_REQUIRE(lz_heap_top(h) == 3, "four keys at infinity and item 3 updated to 1: the top is "
 	      "item %u", lz_heap_top(h));
 	lz_heap_update(h, 3, INFINITY);
 	m.key[3] = INFINITY;
 	check_heap(h, &m, "an update back to infinity");
-	CHECK(isinf(lz_heap_top_t(h)), "every key is infinity but the top key is %g",
+	LZ_REQUIRE(isinf(lz_heap_top_t(h)), "every key is infinity but the top key is %g",
 	      lz_heap_top_t(h));
 	/* a run of ties is no barrier: behind 200 equal keys (a tree 8 levels deep) a
 	 * push of an earlier key must climb all the way to the root */
@@ -600,7 +590,7 @@ LZ_TEST(heap_ties_and_infinite_keys)
 	lz_heap_push(h, order[200], 1.0);
 	m.key[order[200]] = 1.0;
 	m.in[order[200]] = 1;
-	CHECK(lz_heap_top(h) == order[200] && lz_heap_top_t(h) == 1.0, "item %u pushed with key 1 "
+	LZ_REQUIRE(lz_heap_top(h) == order[200] && lz_heap_top_t(h) == 1.0, "item %u pushed with key 1 "
 	      "behind 200 keys of 2.5: it is the earliest and must be the top, the top is item %u "
 	      "(key %g) — does the push sift up all the way, past the ties?", order[200],
 	      lz_heap_top(h), lz_heap_top_t(h));
@@ -625,13 +615,13 @@ LZ_TEST(heap_single_item)
 	lz_heap_update(h, 0, -1.0);
 	m.key[0] = -1;
 	check_heap(h, &m, "an update of the only item to an earlier key");
-	CHECK(lz_heap_top(h) == 0 && lz_heap_top_t(h) == -1.0, "the only item 0 with key -1: top "
+	LZ_REQUIRE(lz_heap_top(h) == 0 && lz_heap_top_t(h) == -1.0, "the only item 0 with key -1: top "
 	      "is item %u with key %g", lz_heap_top(h), lz_heap_top_t(h));
 	uint32_t id = lz_heap_pop(h);
 	m.in[0] = 0;
-	CHECK(id == 0, "pop of the only item returned %u", id);
+	LZ_REQUIRE(id == 0, "pop of the only item returned %u", id);
 	check_heap(h, &m, "the pop of the only item");
-	CHECK(!lz_heap_contains(h, 0), "the only item was popped but the heap still contains it");
+	LZ_REQUIRE(!lz_heap_contains(h, 0), "the only item was popped but the heap still contains it");
 	lz_heap_push(h, 0, INFINITY);
 	m.key[0] = INFINITY;
 	m.in[0] = 1;
@@ -647,7 +637,7 @@ LZ_TEST(heap_single_item)
 	check_heap(g, &mg, "two pushes");
 	id = lz_heap_pop(g);
 	mg.in[1] = 0;
-	CHECK(id == 1, "pop of {item 1: 1.0, item 0: 2.0} returned item %u", id);
+	LZ_REQUIRE(id == 1, "pop of {item 1: 1.0, item 0: 2.0} returned item %u", id);
 	check_heap(g, &mg, "the pop of the earlier of two items");
 	model_free(&m);
 	model_free(&mg);
@@ -661,11 +651,11 @@ LZ_TEST(heap_a_million_events_in_order)
 	/* O(log n) per operation: a million pushes, a million updates and a million pops
 	 * run in well under a second; a linear scan anywhere would take hours */
 	enum { N = 1000000 };
-	gsl_rng *r = rng_new(508);
+	gsl_rng *r = lz_test_rng(508);
 	lz_heap *h = lz_heap_alloc(N);
-	CHECK(h, "lz_heap_alloc(10^6): %s", lz_error_message());
+	LZ_REQUIRE(h, "lz_heap_alloc(10^6): %s", lz_error_message());
 	double *key = malloc(N * sizeof *key);
-	CHECK(key, "out of memory for 10^6 keys");
+	LZ_REQUIRE(key, "out of memory for 10^6 keys");
 	for (uint32_t id = 0; id < N; id++) {
 		key[id] = gsl_rng_uniform(r);
 		lz_heap_push(h, id, key[id]);
@@ -675,24 +665,24 @@ LZ_TEST(heap_a_million_events_in_order)
 		key[id] = gsl_rng_uniform(r);
 		lz_heap_update(h, id, key[id]);
 	}
-	CHECK(lz_heap_audit(h) == LZ_OK, "after 10^6 pushes and 10^6 updates: %s",
+	LZ_REQUIRE(lz_heap_audit(h) == LZ_OK, "after 10^6 pushes and 10^6 updates: %s",
 	      lz_error_message());
 	double last = -INFINITY;
 	for (size_t q = 0; q < N; q++) {
 		uint32_t id = lz_heap_pop(h);
-		CHECK(id < N && key[id] >= last, "pop %zu of 10^6 gave item %u with key %.17g after a "
+		LZ_REQUIRE(id < N && key[id] >= last, "pop %zu of 10^6 gave item %u with key %.17g after a "
 		      "key %.17g: out of order", q + 1, id, id < N ? key[id] : NAN, last);
 		last = key[id];
 		key[id] = -1;  /* a second pop of the same item would come out of order */
 	}
-	CHECK(h->n == 0, "after 10^6 pops the heap holds n = %zu", h->n);
+	LZ_REQUIRE(h->n == 0, "after 10^6 pops the heap holds n = %zu", h->n);
 	size_t still = 0, first = 0;
 	for (uint32_t id = N; id-- > 0;)
 		if (lz_heap_contains(h, id)) {
 			still++;
 			first = id;
 		}
-	CHECK(still == 0, "after 10^6 pops %zu items still claim to be in the heap (item %zu: pos = "
+	LZ_REQUIRE(still == 0, "after 10^6 pops %zu items still claim to be in the heap (item %zu: pos = "
 	      "%u): a pop must mark its item out, pos = LZ_HEAP_NONE", still, first, h->pos[first]);
 	free(key);
 	gsl_rng_free(r);

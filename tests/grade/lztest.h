@@ -5,22 +5,26 @@
  * test case per rubric line, in fork mode, with the rubric's timeout, so a crash,
  * an abort (LZ_TODO) or an endless loop costs that test only.
  *
- * The rubric (tests/NN-name/rubric, plus tests/NN-name/hidden/rubric for tests the
- * handout leaves out) is a whitespace table, '#' comments:
+ * A graded stage's rubric (tests/NN-name/rubric or rubric-*, plus
+ * tests/NN-name/hidden/rubric for tests the handout leaves out) is a whitespace
+ * table, '#' comments:
  *
  *     # test                        points  visibility  timeout_s
  *     kahan_exact_on_cancellation   3       visible     5
  *
  * visibility is Gradescope's: visible | hidden | after_due_date | after_published.
- * Every LZ_TEST must be in a rubric and every rubric line must name an LZ_TEST: the
- * runner refuses to run otherwise.
+ * In a graded suite every LZ_TEST must be in a rubric and every rubric line must name
+ * an LZ_TEST: the runner refuses to run otherwise.
  *
  * Failure messages speak physics: say what was measured, what was expected and the
  * likely cause ("energy grew by 3e-2 over 1e4 steps; velocity Verlet stays below
  * 1e-4 at dt = 0.01 — is the second half-kick using the new force?").
  *
- * Runner command line:  SUITE --rubric FILE [--rubric FILE ...] [--only TEST[,TEST...]]
+ * Runner command line:  SUITE [--rubric FILE ...] [--only TEST[,TEST...]]
  *                       [--machine [--log FILE]]
+ * Only the graded stages have rubrics. Without one (the library's own suite) every
+ * registered test runs, worth no points, with a timeout of 120 s, and the student
+ * view prints no score.
  * Each test runs in a process of its own (the runner's child, in which Check forks
  * the test's own process), so a crash, an endless loop, a flood of output or a
  * resource limit costs that test only, and the message says which it was.
@@ -33,13 +37,18 @@
  *     ...
  *     LZEND <tab> ran <tab> N
  * The runner installs handlers that turn a GSL error and an LZ_TODO() into a test
- * failure with a message, and a quiet lz_error handler (tests of bad input read
- * the message with lz_error_message()).
+ * failure with a message, and a quiet lz_error handler that records the last code
+ * (lz_test_last_error; tests of bad input read the message with lz_error_message()).
+ *
+ * Helpers every suite shares are declared below (defined in runner.c); the library's
+ * own suite adds tests/lib/support.h (files, scenes, a JSON reader).
  */
 #ifndef LZTEST_H
 #define LZTEST_H
 
 #include <check.h>
+#include <gsl/gsl_rng.h>
+
 #include "lz/error.h"
 
 void lz_test_register(const char *name, const TTest *test);
@@ -66,5 +75,20 @@ void lz_test_register(const char *name, const TTest *test);
 
 /* Relative difference |a - b| / max(|b|, tiny), for messages and tolerances. */
 double lz_test_reldiff(double a, double b);
+
+/* A Mersenne Twister (GSL's mt19937) started from `seed`: every test draws its own
+ * reproducible numbers. Free it with gsl_rng_free. */
+gsl_rng *lz_test_rng(unsigned long seed);
+
+/* The code of the last lz_error reported since the test began or since
+ * lz_test_clear_error() (0: none). The runner's handler records it quietly; tests of
+ * bad input read the message with lz_error_message(). */
+int lz_test_last_error(void);
+void lz_test_clear_error(void);
+
+/* Fail unless a call was refused: `failed` (e.g. got == NULL, or status != LZ_OK)
+ * with the code LZ_EINVAL and a message that says `says` (and `also`, unless NULL).
+ * `call` names the call in the failure message. */
+void lz_test_refused(int failed, const char *call, const char *says, const char *also);
 
 #endif

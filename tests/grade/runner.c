@@ -30,6 +30,7 @@
 #define MSG_MAX 4096
 #define LOG_KEEP (1L << 20)  /* bytes: a log longer than this is cut before a test */
 #define LIMIT_EXIT 125       /* a test process that hit the file limit exits with this */
+#define UNGRADED_TIMEOUT 120 /* seconds for each test of a suite without a rubric */
 
 typedef struct {
 	char name[128];
@@ -77,7 +78,38 @@ double lz_test_reldiff(double a, double b)
 	return fabs(a - b) / scale;
 }
 
+gsl_rng *lz_test_rng(unsigned long seed)
+{
+	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+	ck_assert_msg(r != NULL, "no memory for a random number generator");
+	gsl_rng_set(r, seed);
+	return r;
+}
+
+static int last_error;
+
+int lz_test_last_error(void) { return last_error; }
+void lz_test_clear_error(void) { last_error = 0; }
+
+void lz_test_refused(int failed, const char *call, const char *says, const char *also)
+{
+	ck_assert_msg(failed, "%s should be refused", call);
+	ck_assert_msg(last_error == LZ_EINVAL, "%s: code %d, expected LZ_EINVAL (%d)", call,
+	              last_error, LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), says), "%s: the message should say \"%s\": %s",
+	              call, says, lz_error_message());
+	if (also)
+		ck_assert_msg(strstr(lz_error_message(), also), "%s: the message should say "
+		              "\"%s\": %s", call, also, lz_error_message());
+}
+
 /* ---- handlers that turn library events into test failures ---- */
+
+static void record_error(int code, const char *message)
+{
+	(void)message;
+	last_error = code;
+}
 
 static void gsl_to_failure(const char *reason, const char *file, int line, int gsl_errno)
 {
@@ -149,6 +181,20 @@ static int read_rubric(const char *path)
 		status = parse_rubric_line(path, ++lineno, line);
 	fclose(f);
 	return status;
+}
+
+/* Without a rubric (a suite that is not graded: the library's own), every registered
+ * test runs, worth no points, with a generous timeout. */
+static void rubric_of_registry(void)
+{
+	for (int j = 0; j < nregistered; j++) {
+		rubric_line *r = &rubric[nrubric++];
+		snprintf(r->name, sizeof r->name, "%s", registry[j].name);
+		snprintf(r->visibility, sizeof r->visibility, "visible");
+		r->points = 0;
+		r->timeout = UNGRADED_TIMEOUT;
+		r->selected = 1;
+	}
 }
 
 /* Every rubric line names a registered test and every registered test has a line. */
@@ -414,7 +460,7 @@ static outcome run_one(const rubric_line *r, FILE *results)
 
 /* ---- results ---- */
 
-static void print_student(const outcome *out, int *earned, int *npass)
+static void print_student(const outcome *out, int graded, int *earned, int *npass)
 {
 	for (int i = 0; i < nrubric; i++) {
 		if (!rubric[i].selected)
@@ -422,8 +468,11 @@ static void print_student(const outcome *out, int *earned, int *npass)
 		int pts = rubric[i].points;
 		*earned += out[i].pass ? pts : 0;
 		*npass += out[i].pass;
-		printf("  %s  %3d/%-3d  %s\n", out[i].pass ? "PASS" : "FAIL", out[i].pass ? pts : 0,
-		       pts, rubric[i].name);
+		if (graded)
+			printf("  %s  %3d/%-3d  %s\n", out[i].pass ? "PASS" : "FAIL",
+			       out[i].pass ? pts : 0, pts, rubric[i].name);
+		else
+			printf("  %s  %s\n", out[i].pass ? "PASS" : "FAIL", rubric[i].name);
 		if (!out[i].pass)
 			printf("               %s\n", out[i].msg);
 	}
@@ -444,7 +493,7 @@ static void print_machine(FILE *f, const outcome *out, int nrun)
 
 static void usage(void)
 {
-	fprintf(stderr, "usage: SUITE --rubric FILE [--rubric FILE ...] [--only TEST[,TEST...]] "
+	fprintf(stderr, "usage: SUITE [--rubric FILE ...] [--only TEST[,TEST...]] "
 	        "[--machine [--log FILE]]\n");
 	exit(2);
 }
@@ -489,13 +538,13 @@ int main(int argc, char **argv)
 		}
 	}
 	if (nrubrics == 0)
-		usage();
+		rubric_of_registry();
 	if (match_rubric() != 0 || select_only(only, nonly) != 0)
 		return 2;
 
 	gsl_set_error_handler(gsl_to_failure);
 	lz_set_todo_handler(todo_to_failure);
-	lz_set_error_handler(lz_error_quiet);
+	lz_set_error_handler(record_error);
 
 	FILE *results = machine ? divert_output(log) : stdout;
 	static outcome out[MAX_TESTS];
@@ -513,8 +562,10 @@ int main(int argc, char **argv)
 		print_machine(results, out, nrun);
 	} else {
 		npass = 0;
-		print_student(out, &earned, &npass);
-		printf("Score: %d/%d\n%d passed, %d failed\n", earned, total, npass, expected - npass);
+		print_student(out, nrubrics > 0, &earned, &npass);
+		if (nrubrics > 0)
+			printf("Score: %d/%d\n", earned, total);
+		printf("%d passed, %d failed\n", npass, expected - npass);
 	}
 	return npass == expected ? 0 : 1;
 }

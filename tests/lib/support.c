@@ -86,24 +86,6 @@ int lzt_count_matching(const char *dir, const char *part)
 	return count;
 }
 
-static int last_code;
-
-static void lzt_record(int code, const char *message)
-{
-	last_code = code;
-}
-
-void lzt_record_errors(void)
-{
-	last_code = 0;
-	lz_set_error_handler(lzt_record);
-}
-
-int lzt_last_code(void)
-{
-	return last_code;
-}
-
 /* ---- JSON ---- */
 
 typedef struct {

@@ -40,10 +40,6 @@ int lzt_bind(const struct lz_method *m, const char *overrides);
 int lzt_run(const struct lz_method *m, const char *path, const char *overrides,
             const char *out);
 
-/* The code of the last lz_error (the runner's handler is quiet; this one records). */
-void lzt_record_errors(void);
-int lzt_last_code(void);
-
 /* ---- a flat JSON object, read strictly (RFC 8259 grammar) ---- */
 typedef enum { LZT_NUM, LZT_STR, LZT_TRUE, LZT_FALSE, LZT_NULL } lzt_kind;
 typedef struct {

@@ -14,14 +14,6 @@
 #include "lz/hdmc.h"
 #include "lztest.h"
 
-static gsl_rng *rng_seeded(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	ck_assert(r != NULL);
-	gsl_rng_set(r, seed);
-	return r;
-}
-
 static gsl_histogram *hist_uniform(size_t bins, double lo, double hi)
 {
 	gsl_histogram *h = gsl_histogram_alloc(bins);
@@ -157,7 +149,7 @@ END_TEST
 
 LZ_TEST(hdmc_no_overlaps_after_many_sweeps)
 {
-	gsl_rng *r = rng_seeded(7);
+	gsl_rng *r = lz_test_rng(7);
 	lz_hdmc *h = lz_hdmc_alloc(64, 0.7);
 	ck_assert(h != NULL && lz_hdmc_place(h) == LZ_OK);
 	ck_assert_msg(nearest_all_images(h) >= 1.0, "the lattice start overlaps: nearest "
@@ -183,7 +175,7 @@ END_TEST
 
 LZ_TEST(hdmc_extreme_densities)
 {
-	gsl_rng *r = rng_seeded(11);
+	gsl_rng *r = lz_test_rng(11);
 	/* η = 1e-4: the tuner opens δ to its cap L/2, where a move lands anywhere. */
 	lz_hdmc *h = lz_hdmc_alloc(10, 1e-4);
 	ck_assert(h != NULL && lz_hdmc_place(h) == LZ_OK);
@@ -215,7 +207,7 @@ LZ_TEST(hdmc_free_disk_steps_are_symmetric_and_uniform)
 	/* One disk alone: every move is accepted, and its steps must be the proposal, a
 	 * uniform draw from [-δ, δ]²: mean 0 (a one-sided proposal drifts, and breaks
 	 * detailed balance between the disks), variance δ²/3, never beyond δ. */
-	gsl_rng *r = rng_seeded(13);
+	gsl_rng *r = lz_test_rng(13);
 	lz_hdmc *h = lz_hdmc_alloc(1, 0.01);  /* L = 8.9 */
 	ck_assert(h != NULL && lz_hdmc_place(h) == LZ_OK);
 	h->delta = 0.3;
@@ -253,7 +245,7 @@ LZ_TEST(hdmc_gr_of_uniform_points_is_one)
 	/* Points set uniformly at random, overlaps and all (no Monte Carlo): g = 1 in
 	 * expectation in every bin, r < σ included, at any n — with n(n-1)/2 pairs and
 	 * the exact annulus area. */
-	gsl_rng *r = rng_seeded(3);
+	gsl_rng *r = lz_test_rng(3);
 	lz_hdmc *h = lz_hdmc_alloc(3, 0.05);
 	gsl_histogram *hist = hist_uniform(8, 0.0, 4.0);  /* L/2 = 3.43 */
 	char half[32];
@@ -320,7 +312,7 @@ LZ_TEST(hdmc_two_disks_sample_the_allowed_area_uniformly)
 	 * so g = A/(A - π) exactly for σ <= r <= L/2, and 0 below σ. With δ = L/2 a move
 	 * lands anywhere; with δ = 0.5 the disks creep, around each other and through the
 	 * periodic boundary, and the same must come out. */
-	gsl_rng *r = rng_seeded(5);
+	gsl_rng *r = lz_test_rng(5);
 	two_disks(r, 0, 10000);
 	two_disks(r, 0.5, 50000);
 	gsl_rng_free(r);
@@ -349,7 +341,7 @@ LZ_TEST(hdmc_low_density_gr)
 {
 	/* η = 0.02: g = 0 inside σ and 1 + ρ·(lens area of the two exclusion disks) + O(ρ²)
 	 * outside, the second-virial term — 3 % at contact, 0 beyond 2σ. */
-	gsl_rng *r = rng_seeded(9);
+	gsl_rng *r = lz_test_rng(9);
 	lz_hdmc *h = lz_hdmc_alloc(50, 0.02);
 	ck_assert(h != NULL && lz_hdmc_place(h) == LZ_OK);
 	lz_hdmc_tune(h, r, 500, 0.4);
@@ -380,7 +372,7 @@ LZ_TEST(hdmc_contact_pressure_at_eta_0_3)
 	 * 0.0018 (mean), run-to-run standard deviation 0.0087 — so the fit and N = 100 add
 	 * no visible bias. The tolerance 0.035 is 4 of those standard deviations: purely
 	 * statistical. */
-	gsl_rng *r = rng_seeded(2024);
+	gsl_rng *r = lz_test_rng(2024);
 	lz_hdmc *h = lz_hdmc_alloc(100, 0.3);
 	ck_assert(h != NULL && lz_hdmc_place(h) == LZ_OK);
 	lz_hdmc_tune(h, r, 1000, 0.4);
@@ -413,7 +405,7 @@ LZ_TEST(hdmc_same_seed_same_chain)
 {
 	double x[2][40];
 	for (int run = 0; run < 2; run++) {
-		gsl_rng *r = rng_seeded(42);
+		gsl_rng *r = lz_test_rng(42);
 		lz_hdmc *h = lz_hdmc_alloc(20, 0.4);
 		ck_assert(h != NULL && lz_hdmc_place(h) == LZ_OK);
 		lz_hdmc_tune(h, r, 50, 0.4);

@@ -65,9 +65,9 @@ static const char *scene_file(const char *content, size_t n)
 /* Read and bind; LZ_OK or the error code (from the return or the recorded one). */
 static int read_and_bind(const char *path, lz_scene **out)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	lz_scene *s = lz_scene_read(path);
-	int rc = s ? lz_method_bind(&test_method, s) : lzt_last_code();
+	int rc = s ? lz_method_bind(&test_method, s) : lz_test_last_error();
 	if (out && rc == LZ_OK)
 		*out = s;
 	else
@@ -110,15 +110,15 @@ static void rejects(const char *content, int code, const char *suffix)
 
 LZ_TEST(scene_missing_file)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	ck_assert_msg(lz_scene_read("/nonexistent/water.scene") == NULL,
 	              "a missing scene file was 'read'");
-	ck_assert_msg(lzt_last_code() == LZ_EINVAL, "a missing file is bad input (LZ_EINVAL), "
-	              "got code %d", lzt_last_code());
+	ck_assert_msg(lz_test_last_error() == LZ_EINVAL, "a missing file is bad input (LZ_EINVAL), "
+	              "got code %d", lz_test_last_error());
 	ck_assert_msg(strstr(lz_error_message(), "/nonexistent/water.scene") &&
 	              strstr(lz_error_message(), "No such file"),
 	              "the message should name the file and the reason: '%s'", lz_error_message());
-	ck_assert_msg(lz_scene_read("/tmp") == NULL && lzt_last_code() == LZ_EINVAL,
+	ck_assert_msg(lz_scene_read("/tmp") == NULL && lz_test_last_error() == LZ_EINVAL,
 	              "a directory was read as a scene");
 }
 END_TEST
@@ -388,13 +388,13 @@ LZ_TEST(scene_undeclared_key_is_reported)
 {
 	lz_scene *s = NULL;
 	ck_assert(read_and_bind(scene_str(GOOD), &s) == LZ_OK);
-	lzt_record_errors();
-	ck_assert_msg(lz_scene_real(s, "temperature") == 0 && lzt_last_code() == LZ_EINVAL,
+	lz_test_clear_error();
+	ck_assert_msg(lz_scene_real(s, "temperature") == 0 && lz_test_last_error() == LZ_EINVAL,
 	              "asking for an undeclared key should give 0 and LZ_EINVAL");
 	ck_assert_msg(strstr(lz_error_message(), "'temperature'") != NULL, "message: '%s'",
 	              lz_error_message());
-	lzt_record_errors();
-	ck_assert_msg(lz_scene_bool(s, "dt") == 0 && lzt_last_code() == LZ_EINVAL,
+	lz_test_clear_error();
+	ck_assert_msg(lz_scene_bool(s, "dt") == 0 && lz_test_last_error() == LZ_EINVAL,
 	              "asking for a real key as a bool should be reported");
 	lz_scene_free(s);
 }

@@ -19,12 +19,6 @@
 #include "lztest.h"
 #include "support.h"
 
-static gsl_rng *rng_new(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
 
 LZ_TEST(lgas_alloc_rejects_bad_sizes)
 {
@@ -53,7 +47,7 @@ END_TEST
 
 LZ_TEST(lgas_init_rejects_bad_densities)
 {
-	gsl_rng *r = rng_new(1);
+	gsl_rng *r = lz_test_rng(1);
 	lz_lgas *g = lz_lgas_alloc(LZ_LGAS_FHP, 8);
 	static const double bad[] = {0.0, 1.0, -0.1, 1.5, NAN};
 	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -74,7 +68,7 @@ END_TEST
 
 LZ_TEST(lgas_uniform_density_and_totals)
 {
-	gsl_rng *r = rng_new(2);
+	gsl_rng *r = lz_test_rng(2);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas *g = lz_lgas_alloc(m ? LZ_LGAS_FHP : LZ_LGAS_HPP, 128);
 		LZ_REQUIRE_TRUE(lz_lgas_init_uniform(g, 0.3, r) == LZ_OK);
@@ -103,7 +97,7 @@ END_TEST
 
 LZ_TEST(lgas_shear_wave_has_its_momentum_profile)
 {
-	gsl_rng *r = rng_new(3);
+	gsl_rng *r = lz_test_rng(3);
 	lz_lgas *g = lz_lgas_alloc(LZ_LGAS_FHP, 256);
 	ck_assert(lz_lgas_init_shear(g, 0.2, 0.1, r) == LZ_OK);
 	/* Row-averaged x-momentum per site: 6 d u0 sin(2π y/L) on FHP (Σ c_x² = 3, times 2d). */
@@ -123,7 +117,7 @@ END_TEST
 
 LZ_TEST(lgas_pulse_is_denser_in_the_middle_and_keeps_walls)
 {
-	gsl_rng *r = rng_new(4);
+	gsl_rng *r = lz_test_rng(4);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas *g = lz_lgas_alloc(m ? LZ_LGAS_FHP : LZ_LGAS_HPP, 64);
 		lz_lgas_set_wall(g, 0, 0);
@@ -146,7 +140,7 @@ END_TEST
 
 LZ_TEST(lgas_flow_has_its_mean_velocity)
 {
-	gsl_rng *r = rng_new(5);
+	gsl_rng *r = lz_test_rng(5);
 	for (int m = 0; m < 2; m++) {
 		lz_lgas *g = lz_lgas_alloc(m ? LZ_LGAS_FHP : LZ_LGAS_HPP, 256);
 		ck_assert(lz_lgas_init_flow(g, 0.2, 0.3, r) == LZ_OK);

@@ -96,15 +96,6 @@ LZ_TEST(field_index_reserve_and_free_scan)
 }
 END_TEST
 
-/* Fail unless a refused call left code LZ_EINVAL and a message containing `says`. */
-static void refused(const void *got, const char *call, const char *says)
-{
-	ck_assert_msg(got == NULL, "%s should be refused", call);
-	ck_assert_msg(lzt_last_code() == LZ_EINVAL, "%s: code %d, expected LZ_EINVAL", call,
-	              lzt_last_code());
-	ck_assert_msg(strstr(lz_error_message(), says), "%s: the message should say \"%s\": %s",
-	              call, says, lz_error_message());
-}
 
 LZ_TEST(well_alloc_rejects_bad_input)
 {
@@ -114,7 +105,7 @@ LZ_TEST(well_alloc_rejects_bad_input)
 	lz_field small = f;
 	small.side = 16;
 	small.mask = 15;
-	lzt_record_errors();
+	lz_test_clear_error();
 	static const struct { double lambda, depth, T; const char *says; } bad[] = {
 		{1, 1, 1, "lambda = 1:"}, {0.5, 1, 1, "lambda = 0.5"}, {3.01, 1, 1, "lambda = 3.01"},
 		{NAN, 1, 1, "lambda = nan"}, {INFINITY, 1, 1, "lambda = inf"},
@@ -127,46 +118,45 @@ LZ_TEST(well_alloc_rejects_bad_input)
 		char call[128];
 		snprintf(call, sizeof call, "lz_well_alloc(lambda = %g, depth = %g, T = %g)",
 		         bad[k].lambda, bad[k].depth, bad[k].T);
-		refused(lz_well_alloc(&f, bad[k].lambda, bad[k].depth, bad[k].T), call, bad[k].says);
+		lz_test_refused(lz_well_alloc(&f, bad[k].lambda, bad[k].depth, bad[k].T) == NULL,
+		                call, bad[k].says, NULL);
 	}
 	ck_assert_msg(strstr(lz_error_message(), "positive"), "%s", lz_error_message());
-	refused(lz_well_alloc(&f, 0.9, 1, 1), "lambda 0.9", "(1, 3]");
+	lz_test_refused(lz_well_alloc(&f, 0.9, 1, 1) == NULL, "lambda 0.9", "(1, 3]", NULL);
 	/* rw = 2.5 · 4 = 10: 2·rw = 20 > L = 16. The largest λ here is 16 / 8 = 2. */
-	refused(lz_well_alloc(&small, 2.5, 1, 1), "a well wider than half the box", "lambda <= 2");
+	lz_test_refused(lz_well_alloc(&small, 2.5, 1, 1) == NULL,
+	                "a well wider than half the box", "lambda <= 2", NULL);
 	ck_assert_msg(strstr(lz_error_message(), "rw = 10"), "%s", lz_error_message());
-	refused(lz_well_alloc(NULL, 2, 1, 1), "lz_well_alloc(NULL, ...)", "NULL");
+	lz_test_refused(lz_well_alloc(NULL, 2, 1, 1) == NULL, "lz_well_alloc(NULL, ...)",
+	                "NULL", NULL);
 	lz_well_free(NULL);
 }
 END_TEST
 
 LZ_TEST(field_alloc_in_rejects_bad_pitch)
 {
-	lzt_record_errors();
-	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 16), "pitch below L", "pitch = 16");
+	lz_test_clear_error();
+	lz_test_refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 16) == NULL,
+	                "pitch below L", "pitch = 16", NULL);
 	ck_assert_msg(strstr(lz_error_message(), "L = 32"), "%s", lz_error_message());
-	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 48), "pitch not a power of two",
-	        "pitch = 48");
-	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 0), "pitch 0", "pitch = 0");
-	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, -64), "a negative pitch",
-	        "pitch = -64");
-	refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 64, 2, 65536), "2D pitch beyond 2^30 sites",
-	        "pitch <= 32768");
-	refused(lz_field_alloc_in(LZ_LATTICE_CUBIC, 16, 2, 2048), "3D pitch beyond 2^30 sites",
-	        "pitch <= 1024");
+	lz_test_refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 48) == NULL,
+	                "pitch not a power of two", "pitch = 48", NULL);
+	lz_test_refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, 0) == NULL, "pitch 0",
+	                "pitch = 0", NULL);
+	lz_test_refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 32, 2, -64) == NULL,
+	                "a negative pitch", "pitch = -64", NULL);
+	lz_test_refused(lz_field_alloc_in(LZ_LATTICE_SQUARE, 64, 2, 65536) == NULL,
+	                "2D pitch beyond 2^30 sites", "pitch <= 32768", NULL);
+	lz_test_refused(lz_field_alloc_in(LZ_LATTICE_CUBIC, 16, 2, 2048) == NULL,
+	                "3D pitch beyond 2^30 sites", "pitch <= 1024", NULL);
 }
 END_TEST
 
-static gsl_rng *seeded(unsigned long seed)
-{
-	gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-	gsl_rng_set(r, seed);
-	return r;
-}
 
 /* Run RSA to `target` on both fields from the same seed; fail unless they agree. */
 static void rsa_both(lz_field *f, lz_field *g, unsigned long seed, size_t target)
 {
-	gsl_rng *a = seeded(seed), *b = seeded(seed);
+	gsl_rng *a = lz_test_rng(seed), *b = lz_test_rng(seed);
 	int ja = -1, jb = -1;
 	ck_assert(lz_field_rsa(f, a, target, &ja) == LZ_OK && lz_field_rsa(g, b, target, &jb) == LZ_OK);
 	ck_assert_msg(f->n == g->n && ja == jb && f->nfree == g->nfree && f->tries == g->tries,
@@ -188,7 +178,7 @@ static void walk_both(lz_field *f, lz_field *g, unsigned long seed)
 	lz_well *wf = lz_well_alloc(f, 1.5, 1, 0.8), *wg = lz_well_alloc(g, 1.5, 1, 0.8);
 	ck_assert_msg(wf && wg, "lz_well_alloc: %s", lz_error_message());
 	ck_assert(lz_well_energy(wf, f) == lz_well_energy(wg, g));
-	gsl_rng *a = seeded(seed), *b = seeded(seed);
+	gsl_rng *a = lz_test_rng(seed), *b = lz_test_rng(seed);
 	for (int t = 0; t < 20000; t++) {
 		size_t i = gsl_rng_uniform_int(a, f->n);
 		int d = (int)gsl_rng_uniform_int(a, (unsigned long)f->excl->ndir);
@@ -294,12 +284,13 @@ static void largest(lz_lattice_kind kind, int64_t L, const char *limit)
 	              "the corner particle must cover its own site and, wrapped, the origin");
 	ck_assert(lz_field_remove(f, 0) == LZ_OK && f->nfree == f->nsites && f->cell[0] == 0);
 	lz_field_free(f);
-	refused(lz_field_alloc(kind, 2 * L, 2), "the next power of two", limit);
+	lz_test_refused(lz_field_alloc(kind, 2 * L, 2) == NULL, "the next power of two", limit,
+	                NULL);
 }
 
 LZ_TEST(field_size_limits)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	largest(LZ_LATTICE_SQUARE, 32768, "L <= 32768");
 	largest(LZ_LATTICE_CUBIC, 1024, "L <= 1024");
 }

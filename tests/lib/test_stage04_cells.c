@@ -17,19 +17,6 @@
 #include "lztest.h"
 #include "support.h"
 
-/* Fail unless a refused call left code LZ_EINVAL and a message containing every one
- * of the (up to two) strings `says`. */
-static void refused(const lz_cells *got, const char *call, const char *says, const char *also)
-{
-	ck_assert_msg(got == NULL, "%s should be refused", call);
-	ck_assert_msg(lzt_last_code() == LZ_EINVAL, "%s: code %d, expected LZ_EINVAL", call,
-	              lzt_last_code());
-	ck_assert_msg(strstr(lz_error_message(), says), "%s: the message should say \"%s\": %s",
-	              call, says, lz_error_message());
-	if (also)
-		ck_assert_msg(strstr(lz_error_message(), also), "%s: the message should say \"%s\": %s",
-		              call, also, lz_error_message());
-}
 
 static lz_cells *grid(int dim, double L, double rc, int periodic, lz_cells_order order,
                       size_t nmax, size_t cap)
@@ -55,56 +42,66 @@ static uint64_t bf_morton(int dim, uint32_t x, uint32_t y, uint32_t z)
 
 LZ_TEST(cells_alloc_rejects_bad_input)
 {
-	lzt_record_errors();
-	refused(lz_cells_alloc(1, 10, 1, 1, LZ_CELLS_ROW, 10, 0), "dim 1", "dim = 1", "2 or 3");
-	refused(lz_cells_alloc(4, 10, 1, 1, LZ_CELLS_ROW, 10, 0), "dim 4", "dim = 4", "2 or 3");
-	refused(lz_cells_alloc(2, 0, 1, 1, LZ_CELLS_ROW, 10, 0), "L = 0", "L = 0", "positive");
-	refused(lz_cells_alloc(2, -3, 1, 0, LZ_CELLS_ROW, 10, 0), "L < 0", "L = -3", "positive");
-	refused(lz_cells_alloc(2, NAN, 1, 0, LZ_CELLS_ROW, 10, 0), "L = nan", "L = nan", "finite");
-	refused(lz_cells_alloc(2, INFINITY, 1, 0, LZ_CELLS_ROW, 10, 0), "L = inf", "L = inf", NULL);
-	refused(lz_cells_alloc(2, 10, 0, 1, LZ_CELLS_ROW, 10, 0), "rc = 0", "rc = 0", "positive");
-	refused(lz_cells_alloc(3, 10, -1, 1, LZ_CELLS_ROW, 10, 0), "rc < 0", "rc = -1", NULL);
-	refused(lz_cells_alloc(3, 10, NAN, 1, LZ_CELLS_ROW, 10, 0), "rc = nan", "rc = nan", NULL);
-	refused(lz_cells_alloc(3, 10, INFINITY, 0, LZ_CELLS_ROW, 10, 0), "rc = inf", "rc = inf", NULL);
-	refused(lz_cells_alloc(2, 10, 4, 1, LZ_CELLS_ROW, 10, 0), "periodic rc > L/3", "rc = 4",
-	        "rc <= L/3 = 3.33333");
+	lz_test_clear_error();
+	lz_test_refused(lz_cells_alloc(1, 10, 1, 1, LZ_CELLS_ROW, 10, 0) == NULL, "dim 1",
+	                "dim = 1", "2 or 3");
+	lz_test_refused(lz_cells_alloc(4, 10, 1, 1, LZ_CELLS_ROW, 10, 0) == NULL, "dim 4",
+	                "dim = 4", "2 or 3");
+	lz_test_refused(lz_cells_alloc(2, 0, 1, 1, LZ_CELLS_ROW, 10, 0) == NULL, "L = 0",
+	                "L = 0", "positive");
+	lz_test_refused(lz_cells_alloc(2, -3, 1, 0, LZ_CELLS_ROW, 10, 0) == NULL, "L < 0",
+	                "L = -3", "positive");
+	lz_test_refused(lz_cells_alloc(2, NAN, 1, 0, LZ_CELLS_ROW, 10, 0) == NULL, "L = nan",
+	                "L = nan", "finite");
+	lz_test_refused(lz_cells_alloc(2, INFINITY, 1, 0, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "L = inf", "L = inf", NULL);
+	lz_test_refused(lz_cells_alloc(2, 10, 0, 1, LZ_CELLS_ROW, 10, 0) == NULL, "rc = 0",
+	                "rc = 0", "positive");
+	lz_test_refused(lz_cells_alloc(3, 10, -1, 1, LZ_CELLS_ROW, 10, 0) == NULL, "rc < 0",
+	                "rc = -1", NULL);
+	lz_test_refused(lz_cells_alloc(3, 10, NAN, 1, LZ_CELLS_ROW, 10, 0) == NULL, "rc = nan",
+	                "rc = nan", NULL);
+	lz_test_refused(lz_cells_alloc(3, 10, INFINITY, 0, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "rc = inf", "rc = inf", NULL);
+	lz_test_refused(lz_cells_alloc(2, 10, 4, 1, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "periodic rc > L/3", "rc = 4", "rc <= L/3 = 3.33333");
 	/* 0.3 / 3 < 0.1 in floating point: the message shows L/3 to the last digit. */
-	refused(lz_cells_alloc(2, 0.3, 0.1, 1, LZ_CELLS_ROW, 10, 0), "L = 0.3, rc = 0.1",
-	        "L/3 = 0.09999999999999", NULL);
-	refused(lz_cells_alloc(2, 10, 1, 1, LZ_CELLS_ROW, 0, 0), "nmax = 0", "nmax = 0",
-	        "2147483647");
-	refused(lz_cells_alloc(2, 10, 1, 1, LZ_CELLS_ROW, (size_t)1 << 31, 0), "nmax = 2^31",
-	        "nmax = 2147483648", "<= 2147483647");
-	refused(lz_cells_alloc(2, 10, 1, 1, LZ_CELLS_ROW, 10, (size_t)1 << 31), "cap = 2^31",
-	        "cap = 2147483648", "<= 2147483647");
-	refused(lz_cells_alloc(2, 10, 1, 1, (lz_cells_order)7, 10, 0), "order 7", "order 7",
-	        "LZ_CELLS_MORTON");
+	lz_test_refused(lz_cells_alloc(2, 0.3, 0.1, 1, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "L = 0.3, rc = 0.1", "L/3 = 0.09999999999999", NULL);
+	lz_test_refused(lz_cells_alloc(2, 10, 1, 1, LZ_CELLS_ROW, 0, 0) == NULL, "nmax = 0",
+	                "nmax = 0", "2147483647");
+	lz_test_refused(lz_cells_alloc(2, 10, 1, 1, LZ_CELLS_ROW, (size_t)1 << 31, 0) == NULL,
+	                "nmax = 2^31", "nmax = 2147483648", "<= 2147483647");
+	lz_test_refused(lz_cells_alloc(2, 10, 1, 1, LZ_CELLS_ROW, 10, (size_t)1 << 31) == NULL,
+	                "cap = 2^31", "cap = 2147483648", "<= 2147483647");
+	lz_test_refused(lz_cells_alloc(2, 10, 1, 1, (lz_cells_order)7, 10, 0) == NULL,
+	                "order 7", "order 7", "LZ_CELLS_MORTON");
 	lz_cells_free(NULL);
 }
 END_TEST
 
 LZ_TEST(cells_alloc_lattice_rejects_bad_input)
 {
-	lzt_record_errors();
-	refused(lz_cells_alloc_lattice(LZ_NLATTICES, 64, 2, LZ_CELLS_ROW, 10, 0), "kind", "kind 6",
-	        NULL);
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 48, 2, LZ_CELLS_ROW, 10, 0), "side 48",
-	        "48", NULL);
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 2, 0.5, LZ_CELLS_ROW, 10, 0), "side 2",
-	        "L = 2", "L >= 4");
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 0, LZ_CELLS_ROW, 10, 0), "rc 0",
-	        "rc = 0", "positive");
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_CUBIC, 64, NAN, LZ_CELLS_ROW, 10, 0), "rc nan",
-	        "rc = nan", NULL);
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 17, LZ_CELLS_ROW, 10, 0),
-	        "square rc = 17 in L = 64", "rc = 17", "rc <= 16");
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_CUBIC, 64, 1e300, LZ_CELLS_ROW, 10, 0),
-	        "cubic rc = 1e300", "rc = 1e+300", "rc <= 16");
+	lz_test_clear_error();
+	lz_test_refused(lz_cells_alloc_lattice(LZ_NLATTICES, 64, 2, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "kind", "kind 6", NULL);
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 48, 2, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "side 48", "48", NULL);
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 2, 0.5, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "side 2", "L = 2", "L >= 4");
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 0, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "rc 0", "rc = 0", "positive");
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_CUBIC, 64, NAN, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "rc nan", "rc = nan", NULL);
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 17, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "square rc = 17 in L = 64", "rc = 17", "rc <= 16");
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_CUBIC, 64, 1e300, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "cubic rc = 1e300", "rc = 1e+300", "rc <= 16");
 	/* triangular: the reach is ceil(2 rc / sqrt 3) <= 16, so rc <= 8 sqrt 3 = 13.8564 */
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_TRIANGULAR, 64, 14, LZ_CELLS_ROW, 10, 0),
-	        "triangular rc = 14 in L = 64", "rc = 14", "rc <= 13.856");
-	refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 2, LZ_CELLS_ROW, 0, 0), "nmax 0",
-	        "nmax = 0", NULL);
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_TRIANGULAR, 64, 14, LZ_CELLS_ROW, 10, 0) == NULL,
+	                "triangular rc = 14 in L = 64", "rc = 14", "rc <= 13.856");
+	lz_test_refused(lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 2, LZ_CELLS_ROW, 0, 0) == NULL,
+	                "nmax 0", "nmax = 0", NULL);
 	/* the largest allowed cutoffs work: cells of L/4 */
 	lz_cells *c = lz_cells_alloc_lattice(LZ_LATTICE_SQUARE, 64, 16, LZ_CELLS_ROW, 10, 0);
 	ck_assert_msg(c && c->m == 4 && c->shift == 4, "square L = 64, rc = 16: %s",
@@ -336,7 +333,7 @@ END_TEST
 
 LZ_TEST(cells_bin_rejects_bad_input)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	lz_cells *c = grid(2, 10, 1, 1, LZ_CELLS_ROW, 10, 0);
 	double x[24] = {0};
 	int32_t r[24] = {0};

@@ -61,33 +61,26 @@ static int on_row(const lz_nlist *nl, size_t i, uint32_t j)
 	return 0;
 }
 
-static void refused(const lz_nlist *got, const char *call, const char *says, const char *also)
-{
-	ck_assert_msg(got == NULL, "%s should be refused", call);
-	ck_assert_msg(lzt_last_code() == LZ_EINVAL, "%s: code %d, expected LZ_EINVAL", call,
-	              lzt_last_code());
-	ck_assert_msg(strstr(lz_error_message(), says), "%s: the message should say \"%s\": %s",
-	              call, says, lz_error_message());
-	if (also)
-		ck_assert_msg(strstr(lz_error_message(), also), "%s: the message should say \"%s\": %s",
-		              call, also, lz_error_message());
-}
 
 LZ_TEST(nlist_alloc_rejects_bad_input)
 {
 	hand_box h;
 	hand_box_init(&h, LZ_LATTICE_SQUARE, 64);
-	lzt_record_errors();
-	refused(lz_nlist_alloc(NULL, 10, 2), "no box", "box", NULL);
-	refused(lz_nlist_alloc(&h.box, 0, 2), "n = 0", "n = 0", "1 <= n <= 2147483647");
-	refused(lz_nlist_alloc(&h.box, (size_t)1 << 31, 2), "n = 2^31", "n = 2147483648",
-	        "1 <= n <= 2147483647");
-	refused(lz_nlist_alloc(&h.box, 10, 0), "rl = 0", "rl = 0", "0 < rl <= 32");
-	refused(lz_nlist_alloc(&h.box, 10, -1.5), "rl = -1.5", "rl = -1.5", "0 < rl <= 32");
-	refused(lz_nlist_alloc(&h.box, 10, NAN), "rl = NaN", "rl = nan", "0 < rl <= 32");
-	refused(lz_nlist_alloc(&h.box, 10, INFINITY), "rl = inf", "rl = inf", "0 < rl <= 32");
-	refused(lz_nlist_alloc(&h.box, 10, 32.5), "rl = 32.5 in L = 64",
-	        "larger than half the box", "0 < rl <= 32");
+	lz_test_clear_error();
+	lz_test_refused(lz_nlist_alloc(NULL, 10, 2) == NULL, "no box", "box", NULL);
+	lz_test_refused(lz_nlist_alloc(&h.box, 0, 2) == NULL, "n = 0", "n = 0",
+	                "1 <= n <= 2147483647");
+	lz_test_refused(lz_nlist_alloc(&h.box, (size_t)1 << 31, 2) == NULL, "n = 2^31",
+	                "n = 2147483648", "1 <= n <= 2147483647");
+	lz_test_refused(lz_nlist_alloc(&h.box, 10, 0) == NULL, "rl = 0", "rl = 0", "0 < rl <= 32");
+	lz_test_refused(lz_nlist_alloc(&h.box, 10, -1.5) == NULL, "rl = -1.5", "rl = -1.5",
+	                "0 < rl <= 32");
+	lz_test_refused(lz_nlist_alloc(&h.box, 10, NAN) == NULL, "rl = NaN", "rl = nan",
+	                "0 < rl <= 32");
+	lz_test_refused(lz_nlist_alloc(&h.box, 10, INFINITY) == NULL, "rl = inf", "rl = inf",
+	                "0 < rl <= 32");
+	lz_test_refused(lz_nlist_alloc(&h.box, 10, 32.5) == NULL, "rl = 32.5 in L = 64",
+	                "larger than half the box", "0 < rl <= 32");
 	lz_nlist *nl = lz_nlist_alloc(&h.box, 10, 32);
 	ck_assert_msg(nl != NULL, "rl = L/2 is allowed: %s", lz_error_message());
 	lz_nlist_free(nl);
@@ -158,9 +151,9 @@ LZ_TEST(nbuf_grows_by_doubling_and_keeps_entries)
 
 	/* The 32-bit offsets cap a copy: growth beyond is refused, b unchanged. */
 	lz_nbuf full = {.start = NULL, .idx = NULL, .len = UINT32_MAX, .cap = UINT32_MAX};
-	lzt_record_errors();
+	lz_test_clear_error();
 	ck_assert(lz_nbuf_grow(&full) == LZ_ENOMEM);
-	ck_assert(lzt_last_code() == LZ_ENOMEM && strstr(lz_error_message(), "32-bit"));
+	ck_assert(lz_test_last_error() == LZ_ENOMEM && strstr(lz_error_message(), "32-bit"));
 	ck_assert(full.idx == NULL && full.cap == UINT32_MAX && full.len == UINT32_MAX);
 	ck_assert(lz_nbuf_push(&full, 1) == LZ_ENOMEM && full.len == UINT32_MAX);
 }

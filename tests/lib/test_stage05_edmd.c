@@ -22,27 +22,9 @@
 #include "lztest.h"
 #include "support.h"
 
-#define CHECK(cond, ...)                        \
-	do {                                    \
-		if (!(cond))                    \
-			ck_abort_msg(__VA_ARGS__); \
-	} while (0)
 
 static double particle_volume(int dim) { return dim == 3 ? M_PI / 6 : M_PI / 4; }
 
-/* Fail unless a refused call left code LZ_EINVAL and a message containing `says`
- * (and `also`, when not NULL). */
-static void refused(int failed, const char *call, const char *says, const char *also)
-{
-	ck_assert_msg(failed, "%s should be refused", call);
-	ck_assert_msg(lzt_last_code() == LZ_EINVAL, "%s: code %d, expected LZ_EINVAL", call,
-	              lzt_last_code());
-	ck_assert_msg(strstr(lz_error_message(), says), "%s: the message should say \"%s\": %s",
-	              call, says, lz_error_message());
-	if (also)
-		ck_assert_msg(strstr(lz_error_message(), also), "%s: the message should say \"%s\": %s",
-		              call, also, lz_error_message());
-}
 
 static lz_edmd_params params(int dim, size_t n, double eta)
 {
@@ -83,10 +65,10 @@ static lz_edmd *box_of_side(int dim, size_t n, double L, int walls)
 
 LZ_TEST(heap_alloc_rejects_bad_capacity_and_audit_finds_defects)
 {
-	lzt_record_errors();
-	refused(lz_heap_alloc(0) == NULL, "lz_heap_alloc(0)", "capacity 0", NULL);
-	refused(lz_heap_alloc(LZ_HEAP_NONE) == NULL, "lz_heap_alloc(2^32 - 1)", "capacity 4294967295",
-	        NULL);
+	lz_test_clear_error();
+	lz_test_refused(lz_heap_alloc(0) == NULL, "lz_heap_alloc(0)", "capacity 0", NULL);
+	lz_test_refused(lz_heap_alloc(LZ_HEAP_NONE) == NULL, "lz_heap_alloc(2^32 - 1)",
+	                "capacity 4294967295", NULL);
 	lz_heap_free(NULL);
 	lz_heap *h = lz_heap_alloc(6);
 	ck_assert(h);
@@ -134,47 +116,48 @@ END_TEST
 
 LZ_TEST(edmd_alloc_rejects_bad_input)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	lz_edmd_params p = params(3, 100, 0.3);
 	p.dim = 1;
-	refused(lz_edmd_alloc(&p) == NULL, "dim 1", "dim = 1", "2 or 3");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "dim 1", "dim = 1", "2 or 3");
 	p = params(3, 0, 0.3);
-	refused(lz_edmd_alloc(&p) == NULL, "n = 0", "n = 0", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "n = 0", "n = 0", NULL);
 	p = params(3, 100, 0.75);
-	refused(lz_edmd_alloc(&p) == NULL, "3D packing 0.75", "packing = 0.75", "close packing");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "3D packing 0.75", "packing = 0.75",
+	                "close packing");
 	p = params(3, 100, LZ_EDMD_CLOSE_3D);
-	refused(lz_edmd_alloc(&p) == NULL, "3D packing at close packing", "0.7405", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "3D packing at close packing", "0.7405", NULL);
 	p = params(2, 100, 0.91);
-	refused(lz_edmd_alloc(&p) == NULL, "2D packing 0.91", "packing = 0.91", "0.9069");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "2D packing 0.91", "packing = 0.91", "0.9069");
 	p = params(2, 100, 0);
-	refused(lz_edmd_alloc(&p) == NULL, "packing 0", "packing = 0", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "packing 0", "packing = 0", NULL);
 	p = params(2, 100, NAN);
-	refused(lz_edmd_alloc(&p) == NULL, "packing NaN", "packing = nan", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "packing NaN", "packing = nan", NULL);
 	p = params(3, 100, 0.3);
 	p.restitution = 0;
-	refused(lz_edmd_alloc(&p) == NULL, "restitution 0", "restitution = 0", "(0, 1]");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "restitution 0", "restitution = 0", "(0, 1]");
 	p.restitution = 1.5;
-	refused(lz_edmd_alloc(&p) == NULL, "restitution 1.5", "restitution = 1.5", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "restitution 1.5", "restitution = 1.5", NULL);
 	p.restitution = NAN;
-	refused(lz_edmd_alloc(&p) == NULL, "restitution NaN", "restitution = nan", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "restitution NaN", "restitution = nan", NULL);
 	p = params(3, 100, 0.3);
 	p.gravity = -1;
 	p.walls = LZ_EDMD_WALLS_X;
-	refused(lz_edmd_alloc(&p) == NULL, "gravity -1", "gravity = -1", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "gravity -1", "gravity = -1", NULL);
 	p.gravity = INFINITY;
-	refused(lz_edmd_alloc(&p) == NULL, "gravity inf", "gravity = inf", "finite");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "gravity inf", "gravity = inf", "finite");
 	p.gravity = 1;
 	p.walls = LZ_EDMD_WALLS_NONE;
-	refused(lz_edmd_alloc(&p) == NULL, "gravity without walls", "gravity = 1", "walls");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "gravity without walls", "gravity = 1", "walls");
 	p = params(3, 100, 0.3);
 	p.walls = 7;
-	refused(lz_edmd_alloc(&p) == NULL, "walls 7", "walls = 7", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "walls 7", "walls = 7", NULL);
 	/* cells given by hand: at least 3 per periodic side, each at least σ wide */
 	p = params(3, 1000, 0.3);  /* L = 12.05 */
 	p.cells = 2;
-	refused(lz_edmd_alloc(&p) == NULL, "cells = 2 periodic", "cells = 2", "[3, 12]");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "cells = 2 periodic", "cells = 2", "[3, 12]");
 	p.cells = 13;
-	refused(lz_edmd_alloc(&p) == NULL, "cells = 13 in L = 12.05", "cells = 13", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "cells = 13 in L = 12.05", "cells = 13", NULL);
 	p.cells = 12;
 	lz_edmd *e = alloc_ok(&p);
 	ck_assert_msg(e->m[0] == 12 && e->m[1] == 12 && e->m[2] == 12 && e->w[0] >= 1,
@@ -184,7 +167,7 @@ LZ_TEST(edmd_alloc_rejects_bad_input)
 	 * L = 640 would be 2.2e8 */
 	p = params(3, 50000, 1e-4);
 	p.cells = 600;
-	refused(lz_edmd_alloc(&p) == NULL, "cells = 600 in 3D", "cells = 600", "[3, 512]");
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "cells = 600 in 3D", "cells = 600", "[3, 512]");
 	lz_edmd_free(NULL);
 }
 END_TEST
@@ -193,7 +176,7 @@ LZ_TEST(edmd_alloc_refuses_a_box_below_three_cells_and_says_which_n_fits)
 {
 	/* a periodic box needs 3 cells of at least σ per side, so L >= 3: at packing
 	 * η that is n >= 3^dim η / v1; the message names that n, and it fits */
-	lzt_record_errors();
+	lz_test_clear_error();
 	static const struct {
 		int dim;
 		double eta;
@@ -206,7 +189,7 @@ LZ_TEST(edmd_alloc_refuses_a_box_below_three_cells_and_says_which_n_fits)
 		snprintf(say, sizeof say, "n >= %.0f", nmin);
 		lz_edmd_params p = params(dim, (size_t)nmin - 1, eta);
 		snprintf(call, sizeof call, "%dD, n = %.0f at packing %g", dim, nmin - 1, eta);
-		refused(lz_edmd_alloc(&p) == NULL, call, say, "3");
+		lz_test_refused(lz_edmd_alloc(&p) == NULL, call, say, "3");
 		p.n = (size_t)nmin;
 		lz_edmd *e = lz_edmd_alloc(&p);
 		ck_assert_msg(e != NULL, "%dD at packing %g: the message said %s fits, but n = %.0f is "
@@ -223,7 +206,7 @@ LZ_TEST(edmd_alloc_refuses_a_box_below_three_cells_and_says_which_n_fits)
 	lz_edmd_free(e);
 	/* with walls on x only the periodic axes still need 3 cells */
 	p.walls = LZ_EDMD_WALLS_X;
-	refused(lz_edmd_alloc(&p) == NULL, "walls on x only, L < 3", "3", NULL);
+	lz_test_refused(lz_edmd_alloc(&p) == NULL, "walls on x only, L < 3", "3", NULL);
 }
 END_TEST
 
@@ -429,7 +412,7 @@ END_TEST
 
 LZ_TEST(edmd_place_lattice_places_and_refuses)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	static const struct {
 		int dim, walls;
 		size_t n;
@@ -468,14 +451,14 @@ LZ_TEST(edmd_place_lattice_places_and_refuses)
 	lz_edmd_params p = params(2, 400, 0.85);
 	lz_edmd *e = alloc_ok(&p);
 	lz_rng *r = lz_rng_alloc(NULL, 1);
-	refused(lz_edmd_place_lattice(e, r) != LZ_OK, "2D lattice at η = 0.85", "do not fit",
-	        "400 particles");
+	lz_test_refused(lz_edmd_place_lattice(e, r) != LZ_OK, "2D lattice at η = 0.85",
+	                "do not fit", "400 particles");
 	lz_edmd_free(e);
 	/* 3D at 0.73 fits only a full fcc lattice of 4M^3 sites: 500 fit, 501 do not */
 	p = params(3, 501, 0.73);
 	e = alloc_ok(&p);
-	refused(lz_edmd_place_lattice(e, r) != LZ_OK, "3D lattice of 501 at η = 0.73", "do not fit",
-	        "4M^3");
+	lz_test_refused(lz_edmd_place_lattice(e, r) != LZ_OK, "3D lattice of 501 at η = 0.73",
+	                "do not fit", "4M^3");
 	lz_edmd_free(e);
 	p.n = 500;
 	e = alloc_ok(&p);
@@ -488,46 +471,48 @@ END_TEST
 
 LZ_TEST(edmd_set_refuses_bad_states_naming_the_particle)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	lz_edmd *e = box_of_side(3, 4, 10, LZ_EDMD_WALLS_NONE);
 	double r[12] = {1, 1, 1, 5, 5, 5, 8, 2, 6, 2, 8, 3}, v[12] = {0};
 	ck_assert_msg(lz_edmd_set(e, r, v) == LZ_OK, "a good state: %s", lz_error_message());
 	/* two particles closer than σ, across the periodic boundary */
 	double r2[12] = {0.3, 1, 1, 5, 5, 5, 8, 2, 6, 9.6, 1.1, 0.9};
-	refused(lz_edmd_set(e, r2, v) != LZ_OK, "particles 0 and 3 overlap through the wrap",
-	        "particles 0 and 3", "overlap");
+	lz_test_refused(lz_edmd_set(e, r2, v) != LZ_OK,
+	                "particles 0 and 3 overlap through the wrap", "particles 0 and 3",
+	                "overlap");
 	double r3[12] = {1, 1, 1, 5, 5, 5, 5.5, 5.5, 5.5, 2, 8, 3};
-	refused(lz_edmd_set(e, r3, v) != LZ_OK, "particles 1 and 2 overlap", "particles 1 and 2",
-	        "0.866");
+	lz_test_refused(lz_edmd_set(e, r3, v) != LZ_OK, "particles 1 and 2 overlap",
+	                "particles 1 and 2", "0.866");
 	double r4[12] = {1, 1, 1, 5, 5, NAN, 8, 2, 6, 2, 8, 3};
-	refused(lz_edmd_set(e, r4, v) != LZ_OK, "a NaN position", "particle 1", "finite");
+	lz_test_refused(lz_edmd_set(e, r4, v) != LZ_OK, "a NaN position", "particle 1", "finite");
 	double r8[12] = {1, 1, 1, 5, 5, 5, 8, 10.5, 6, 2, 8, 3};
-	refused(lz_edmd_set(e, r8, v) != LZ_OK, "y = 10.5 in a box of 10", "particle 2",
-	        "outside the box");
+	lz_test_refused(lz_edmd_set(e, r8, v) != LZ_OK, "y = 10.5 in a box of 10", "particle 2",
+	                "outside the box");
 	double r9[12] = {1, 1, 1, 5, 5, 5, 8, 2, 6, 2, -1e-13, 3};
 	ck_assert_msg(lz_edmd_set(e, r9, v) == LZ_OK, "y = -1e-13 is round-off, wrapped: %s",
 	              lz_error_message());
 	ck_assert_msg(e->p[3].r[1] >= 0 && e->p[3].r[1] < e->L, "y = -1e-13 must be wrapped into "
 	              "[0, L), got %.17g", e->p[3].r[1]);
 	double v5[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, INFINITY, 0};
-	refused(lz_edmd_set(e, r, v5) != LZ_OK, "an infinite velocity", "particle 3", "finite");
+	lz_test_refused(lz_edmd_set(e, r, v5) != LZ_OK, "an infinite velocity", "particle 3",
+	                "finite");
 	/* touching to 1e-11 is allowed (round-off), overlapping by 1e-9 is not */
 	double r6[12] = {1, 1, 1, 2 - 1e-11, 1, 1, 8, 2, 6, 2, 8, 3};
 	ck_assert_msg(lz_edmd_set(e, r6, v) == LZ_OK, "touching within 1e-11: %s", lz_error_message());
 	double r7[12] = {1, 1, 1, 2 - 1e-9, 1, 1, 8, 2, 6, 2, 8, 3};
-	refused(lz_edmd_set(e, r7, v) != LZ_OK, "overlap 1e-9", "particles 0 and 1", NULL);
+	lz_test_refused(lz_edmd_set(e, r7, v) != LZ_OK, "overlap 1e-9", "particles 0 and 1", NULL);
 	lz_edmd_free(e);
 	/* walls: a centre beyond the contact 1/2 */
 	e = box_of_side(2, 3, 10, LZ_EDMD_WALLS_X);
 	double w[9] = {0.4, 5, 0, 5, 5, 0, 7, 7, 0}, wv[9] = {0};
-	refused(lz_edmd_set(e, w, wv) != LZ_OK, "x = 0.4 with a wall at 0", "particle 0",
-	        "beyond the wall");
+	lz_test_refused(lz_edmd_set(e, w, wv) != LZ_OK, "x = 0.4 with a wall at 0",
+	                "particle 0", "beyond the wall");
 	double w2[9] = {0.5, 5, 0, 5, 5, 0, 7, 9.7, 0};
 	ck_assert_msg(lz_edmd_set(e, w2, wv) == LZ_OK, "x = 0.5 touches the wall, y = 9.7 is "
 	              "periodic: %s", lz_error_message());
 	double w3[9] = {0.5, 5, 0, 9.6, 5, 0, 7, 7, 0};
-	refused(lz_edmd_set(e, w3, wv) != LZ_OK, "x = 9.6 with a wall at 10", "particle 1",
-	        "beyond the wall");
+	lz_test_refused(lz_edmd_set(e, w3, wv) != LZ_OK, "x = 9.6 with a wall at 10",
+	                "particle 1", "beyond the wall");
 	lz_edmd_free(e);
 }
 END_TEST
@@ -536,7 +521,7 @@ END_TEST
 
 LZ_TEST(edmd_run_stops_at_t_stop_and_when_nothing_happens)
 {
-	lzt_record_errors();
+	lz_test_clear_error();
 	lz_edmd *e = lattice(3, 300, 0.3, LZ_EDMD_WALLS_NONE, 11);
 	int st = lz_edmd_run(e, 100000000, 2.5);
 	ck_assert_msg(st == LZ_OK && fabs(lz_edmd_time(e) - 2.5) < 1e-12, "run to t = 2.5: status "
