@@ -35,7 +35,7 @@ static const char lz_cli_usage_text[] =
 static _Thread_local int lz_cli_code;
 
 /* The CLI prints the message once, at the end; the handler only keeps the code. */
-static void lz_cli_record(int code, const char *message)
+static void record(int code, const char *message)
 {
 	lz_cli_code = code;
 }
@@ -47,8 +47,8 @@ const char *lz_scene_dir(void)
 }
 
 /* Report a usage error: the message, then the usage lines. */
-static int lz_cli_usage(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static int lz_cli_usage(const char *fmt, ...)
+static int print_usage(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static int print_usage(const char *fmt, ...)
 {
 	char msg[512];
 	va_list ap;
@@ -60,7 +60,7 @@ static int lz_cli_usage(const char *fmt, ...)
 }
 
 /* "verlet, walk, ..." */
-static void lz_cli_method_names(char *buf, size_t size)
+static void method_names(char *buf, size_t size)
 {
 	size_t n, len = 0;
 	const lz_method *const *m = lz_methods(&n);
@@ -79,36 +79,36 @@ typedef struct {
 	int noverrides;
 } lz_cli_args;
 
-static int lz_cli_run_parse(int argc, char **argv, lz_cli_args *a)
+static int run_parse(int argc, char **argv, lz_cli_args *a)
 {
 	for (int i = 0; i < argc; i++) {
 		const char *arg = argv[i];
 		if (strcmp(arg, "--out") == 0) {
 			if (i + 1 == argc)
-				return lz_cli_usage("--out needs a directory");
+				return print_usage("--out needs a directory");
 			a->out = argv[++i];
 		} else if (strncmp(arg, "--out=", 6) == 0) {
 			a->out = arg + 6;
 		} else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "-q") == 0) {
 			a->quiet = 1;
 		} else if (arg[0] == '-' && arg[1]) {
-			return lz_cli_usage("unknown option '%s'", arg);
+			return print_usage("unknown option '%s'", arg);
 		} else if (!a->scene) {
 			a->scene = arg;
 		} else if (strchr(arg, '=')) {
 			a->overrides[a->noverrides++] = argv[i];
 		} else {
-			return lz_cli_usage("unexpected argument '%s' (after SCENE come "
+			return print_usage("unexpected argument '%s' (after SCENE come "
 			                    "key=value overrides)", arg);
 		}
 	}
 	if (!a->scene)
-		return lz_cli_usage("lz run needs a scene");
+		return print_usage("lz run needs a scene");
 	return LZ_OK;
 }
 
 /* SCENE as a path if it names a file, else as a name in the scene directory. */
-static int lz_cli_scene_path(const char *arg, char *path, size_t size)
+static int scene_path(const char *arg, char *path, size_t size)
 {
 	struct stat st;
 	if (strlen(arg) >= size)
@@ -130,10 +130,10 @@ static int lz_cli_scene_path(const char *arg, char *path, size_t size)
 
 /* Read SCENE, apply the overrides, find its method and bind: every check a run
  * needs, done before anything is written. */
-static int lz_cli_run_load(const lz_cli_args *a, lz_scene **sp, const lz_method **mp)
+static int run_load(const lz_cli_args *a, lz_scene **sp, const lz_method **mp)
 {
 	char path[4096], names[512];
-	int rc = lz_cli_scene_path(a->scene, path, sizeof path);
+	int rc = scene_path(a->scene, path, sizeof path);
 	if (rc != LZ_OK)
 		return rc;
 	lz_scene *s = *sp = lz_scene_read(path);
@@ -142,7 +142,7 @@ static int lz_cli_run_load(const lz_cli_args *a, lz_scene **sp, const lz_method 
 	for (int i = 0; i < a->noverrides; i++)
 		if ((rc = lz_scene_set(s, a->overrides[i], "command line")) != LZ_OK)
 			return rc;
-	lz_cli_method_names(names, sizeof names);
+	method_names(names, sizeof names);
 	const char *method = lz_scene_method(s);
 	if (!method)
 		return lz_error(LZ_EINVAL, "%s: no 'method' key; say which engine runs the scene "
@@ -155,7 +155,7 @@ static int lz_cli_run_load(const lz_cli_args *a, lz_scene **sp, const lz_method 
 }
 
 /* An automatic seed is logged so that seed=N repeats the run. */
-static void lz_cli_log_seeds(const lz_scene *s, const lz_method *m)
+static void log_seeds(const lz_scene *s, const lz_method *m)
 {
 	for (size_t i = 0; i < m->keys.n; i++) {
 		const char *key = m->keys.key[i].name;
@@ -167,7 +167,7 @@ static void lz_cli_log_seeds(const lz_scene *s, const lz_method *m)
 
 /* Remove the partial directory, keeping the message of the failure itself (removing
  * may report errors of its own). */
-static int lz_cli_run_fail(lz_rundir *d, int rc)
+static int run_fail(lz_rundir *d, int rc)
 {
 	char msg[2048];
 	if (lz_cli_code == LZ_OK)  /* a method that failed without saying why */
@@ -178,7 +178,7 @@ static int lz_cli_run_fail(lz_rundir *d, int rc)
 }
 
 /* Run a bound scene into its directory: parameters, the method's results, wall_s. */
-static int lz_cli_run_execute(const lz_scene *s, const lz_method *m, const char *out,
+static int run_execute(const lz_scene *s, const lz_method *m, const char *out,
                               int quiet)
 {
 	lz_rundir d;
@@ -187,10 +187,10 @@ static int lz_cli_run_execute(const lz_scene *s, const lz_method *m, const char 
 	if (rc != LZ_OK)
 		return rc;
 	if ((rc = lz_rundir_file(&d, "summary.json", path, sizeof path)) != LZ_OK)
-		return lz_cli_run_fail(&d, rc);
+		return run_fail(&d, rc);
 	lz_json *j = lz_json_open(path);
 	if (!j)
-		return lz_cli_run_fail(&d, lz_cli_code);
+		return run_fail(&d, lz_cli_code);
 	lz_scene_json(s, j);
 	lz_run run = {&d, j, quiet};
 	lz_cli_code = LZ_OK;
@@ -202,13 +202,13 @@ static int lz_cli_run_execute(const lz_scene *s, const lz_method *m, const char 
 	if (rc == LZ_OK)
 		rc = lz_rundir_commit(&d);
 	if (rc != LZ_OK)
-		return lz_cli_run_fail(&d, rc);
+		return run_fail(&d, rc);
 	if (!quiet)
 		fprintf(stderr, "lz: results in %s/\n", d.final);
 	return LZ_OK;
 }
 
-static int lz_cli_run(int argc, char **argv)
+static int cmd_run(int argc, char **argv)
 {
 	lz_cli_args a = {0};
 	a.overrides = malloc((size_t)(argc + 1) * sizeof *a.overrides);
@@ -216,15 +216,15 @@ static int lz_cli_run(int argc, char **argv)
 		return lz_error(LZ_ENOMEM, "no memory for the arguments");
 	lz_scene *s = NULL;
 	const lz_method *m = NULL;
-	int rc = lz_cli_run_parse(argc, argv, &a);
+	int rc = run_parse(argc, argv, &a);
 	if (rc == LZ_OK)
-		rc = lz_cli_run_load(&a, &s, &m);
+		rc = run_load(&a, &s, &m);
 	if (rc == LZ_OK) {
 		char out[4096];
 		snprintf(out, sizeof out, "build/runs/%s", lz_scene_name(s));
 		if (!a.quiet)
-			lz_cli_log_seeds(s, m);
-		rc = lz_cli_run_execute(s, m, a.out ? a.out : out, a.quiet);
+			log_seeds(s, m);
+		rc = run_execute(s, m, a.out ? a.out : out, a.quiet);
 	}
 	lz_scene_free(s);
 	free(a.overrides);
@@ -233,14 +233,14 @@ static int lz_cli_run(int argc, char **argv)
 
 /* ---- lz list ---- */
 
-static int lz_cli_is_scene_file(const struct dirent *e)
+static int is_scene_file(const struct dirent *e)
 {
 	size_t n = strlen(e->d_name);
 	return n > 6 && e->d_name[0] != '.' && strcmp(e->d_name + n - 6, ".scene") == 0;
 }
 
 /* The first '#' comment of a scene file, without the '#': its description. */
-static void lz_cli_scene_description(const char *path, char *buf, size_t size)
+static void scene_description(const char *path, char *buf, size_t size)
 {
 	FILE *f = fopen(path, "r");
 	buf[0] = '\0';
@@ -258,11 +258,11 @@ static void lz_cli_scene_description(const char *path, char *buf, size_t size)
 		fclose(f);
 }
 
-static int lz_cli_list(void)
+static int cmd_list(void)
 {
 	const char *dir = lz_scene_dir();
 	struct dirent **files;
-	int n = scandir(dir, &files, lz_cli_is_scene_file, alphasort);
+	int n = scandir(dir, &files, is_scene_file, alphasort);
 	if (n < 0)
 		return lz_error(LZ_EIO, "cannot list the scenes in '%s' (set LZ_SCENES to the "
 		                "scene directory)", dir);
@@ -277,7 +277,7 @@ static int lz_cli_list(void)
 		snprintf(path, sizeof path, "%s/%s", dir, files[i]->d_name);
 		lz_scene *s = lz_scene_read(path);
 		if (s)
-			lz_cli_scene_description(path, about, sizeof about);
+			scene_description(path, about, sizeof about);
 		else
 			snprintf(about, sizeof about, "(broken: %s)", lz_error_message());
 		const char *method = s ? lz_scene_method(s) : NULL;
@@ -298,7 +298,7 @@ static const char *const lz_cli_help_heads[NCOLS] = {"key", "type", "default", "
                                                      "meaning"};
 
 /* Characters, not bytes: units are UTF-8 (σ, τ). */
-static int lz_cli_text_width(const char *s)
+static int text_width(const char *s)
 {
 	int w = 0;
 	for (; *s; s++)
@@ -307,7 +307,7 @@ static int lz_cli_text_width(const char *s)
 }
 
 /* The cells of one key's row (each 256 bytes). */
-static void lz_cli_help_row(const lz_key *k, char cell[NCOLS][256])
+static void help_row(const lz_key *k, char cell[NCOLS][256])
 {
 	static const char *const types[] = {"int", "real", "enum", "seed", "bool", "text"};
 	const char *unit = k->unit && *k->unit ? k->unit : NULL;
@@ -345,14 +345,14 @@ static void lz_cli_help_row(const lz_key *k, char cell[NCOLS][256])
 	snprintf(cell[COL_HELP], 256, "%s", k->help ? k->help : "");
 }
 
-static void lz_cli_help_line(char cell[NCOLS][256], const int *width)
+static void help_line(char cell[NCOLS][256], const int *width)
 {
 	for (int c = 0; c < NCOLS; c++)
-		printf("| %s%*s ", cell[c], width[c] - lz_cli_text_width(cell[c]), "");
+		printf("| %s%*s ", cell[c], width[c] - text_width(cell[c]), "");
 	printf("|\n");
 }
 
-static void lz_cli_help_method(const lz_method *m)
+static void help_method(const lz_method *m)
 {
 	char (*rows)[NCOLS][256] = calloc(m->keys.n + 2, sizeof *rows);
 	if (!rows) {
@@ -363,32 +363,32 @@ static void lz_cli_help_method(const lz_method *m)
 	for (int c = 0; c < NCOLS; c++)
 		snprintf(rows[0][c], 256, "%s", lz_cli_help_heads[c]);
 	for (size_t i = 0; i < m->keys.n; i++)
-		lz_cli_help_row(&m->keys.key[i], rows[i + 2]);
+		help_row(&m->keys.key[i], rows[i + 2]);
 	for (size_t i = 0; i < m->keys.n + 2; i++)
 		for (int c = 0; c < NCOLS; c++)
-			if (lz_cli_text_width(rows[i][c]) > width[c])
-				width[c] = lz_cli_text_width(rows[i][c]);
+			if (text_width(rows[i][c]) > width[c])
+				width[c] = text_width(rows[i][c]);
 	for (int c = 0; c < NCOLS; c++)
 		memset(rows[1][c], '-', (size_t)width[c]);
 	printf("method %s: %s\n\nkey = value lines; `method = %s` picks this method.\n\n",
 	       m->name, m->help, m->name);
 	for (size_t i = 0; i < m->keys.n + 2; i++)
-		lz_cli_help_line(rows[i], width);
+		help_line(rows[i], width);
 	free(rows);
 }
 
-static int lz_cli_help(int argc, char **argv)
+static int cmd_help(int argc, char **argv)
 {
 	if (argc > 1)
-		return lz_cli_usage("lz help takes at most one method");
+		return print_usage("lz help takes at most one method");
 	if (argc == 1) {
 		const lz_method *m = lz_method_find(argv[0]);
 		char names[512];
-		lz_cli_method_names(names, sizeof names);
+		method_names(names, sizeof names);
 		if (!m)
 			return lz_error(LZ_EINVAL, "unknown method '%s'; the methods are: %s", argv[0],
 			                names);
-		lz_cli_help_method(m);
+		help_method(m);
 		return LZ_OK;
 	}
 	size_t n;
@@ -403,25 +403,25 @@ static int lz_cli_help(int argc, char **argv)
 
 /* ---- main ---- */
 
-static int lz_cli_dispatch(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
 	if (argc < 2)
-		return lz_cli_usage("say what to do");
+		return print_usage("say what to do");
 	const char *cmd = argv[1];
 	if (strcmp(cmd, "run") == 0)
-		return lz_cli_run(argc - 2, argv + 2);
+		return cmd_run(argc - 2, argv + 2);
 	if (strcmp(cmd, "list") == 0)
-		return argc == 2 ? lz_cli_list() : lz_cli_usage("lz list takes no arguments");
+		return argc == 2 ? cmd_list() : print_usage("lz list takes no arguments");
 	if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0)
-		return lz_cli_help(argc - 2, argv + 2);
-	return lz_cli_usage("unknown command '%s'", cmd);
+		return cmd_help(argc - 2, argv + 2);
+	return print_usage("unknown command '%s'", cmd);
 }
 
 int lz_cli_main(int argc, char **argv)
 {
-	lz_error_handler *previous = lz_set_error_handler(lz_cli_record);
+	lz_error_handler *previous = lz_set_error_handler(record);
 	lz_cli_code = LZ_OK;
-	int rc = lz_cli_dispatch(argc, argv);
+	int rc = dispatch(argc, argv);
 	lz_set_error_handler(previous);
 	if (rc == LZ_OK)
 		return 0;

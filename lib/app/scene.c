@@ -45,7 +45,7 @@ struct lz_scene {
 /* ---- reading ---- */
 
 /* 1 when the n bytes are text: valid UTF-8 without control characters except tab. */
-static int lz_is_text(const unsigned char *p, size_t n)
+static int is_text(const unsigned char *p, size_t n)
 {
 	for (size_t i = 0; i < n;) {
 		unsigned c = p[i], cp, min;
@@ -79,7 +79,7 @@ static int lz_is_text(const unsigned char *p, size_t n)
 	return 1;
 }
 
-static char *lz_trim(char *s)
+static char *trim(char *s)
 {
 	while (*s == ' ' || *s == '\t')
 		s++;
@@ -89,7 +89,7 @@ static char *lz_trim(char *s)
 	return s;
 }
 
-static int lz_is_word(const char *s)
+static int is_word(const char *s)
 {
 	for (; *s; s++)
 		if (!((*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '_'))
@@ -100,7 +100,7 @@ static int lz_is_word(const char *s)
 /* Split one line (len bytes at raw, no newline) into key and value, copied into buf
  * (LZ_SCENE_LINE_MAX + 1 bytes). Returns 1 for an assignment, 0 for a blank or
  * comment line, or an error code; `where` starts every message. */
-static int lz_parse_line(const char *raw, size_t len, const char *where, char *buf,
+static int parse_line(const char *raw, size_t len, const char *where, char *buf,
                          char **key, char **value)
 {
 	if (len > 0 && raw[len - 1] == '\r')  /* a file saved with CRLF line ends */
@@ -108,25 +108,25 @@ static int lz_parse_line(const char *raw, size_t len, const char *where, char *b
 	if (len > LZ_SCENE_LINE_MAX)
 		return lz_error(LZ_ESYNTAX, "%s: line longer than %d bytes", where,
 		                LZ_SCENE_LINE_MAX);
-	if (!lz_is_text((const unsigned char *)raw, len))
+	if (!is_text((const unsigned char *)raw, len))
 		return lz_error(LZ_ESYNTAX, "%s: not a text line (binary data?)", where);
 	memcpy(buf, raw, len);
 	buf[len] = '\0';
 	char *hash = strchr(buf, '#');
 	if (hash)
 		*hash = '\0';
-	char *line = lz_trim(buf);
+	char *line = trim(buf);
 	if (!*line)
 		return 0;
 	char *eq = strchr(line, '=');
 	if (!eq)
 		return lz_error(LZ_ESYNTAX, "%s: expected 'key = value', found '%s'", where, line);
 	*eq = '\0';
-	*key = lz_trim(line);
-	*value = lz_trim(eq + 1);
+	*key = trim(line);
+	*value = trim(eq + 1);
 	if (!**key)
 		return lz_error(LZ_ESYNTAX, "%s: no key before '='", where);
-	if (!lz_is_word(*key))
+	if (!is_word(*key))
 		return lz_error(LZ_ESYNTAX, "%s: key '%s' must be one word of a-z, 0-9 and _",
 		                where, *key);
 	if (!**value)
@@ -134,7 +134,7 @@ static int lz_parse_line(const char *raw, size_t len, const char *where, char *b
 	return 1;
 }
 
-static int lz_scene_find(const lz_scene *s, const char *key)
+static int scene_find(const lz_scene *s, const char *key)
 {
 	for (size_t i = 0; i < s->n; i++)
 		if (strcmp(s->e[i].key, key) == 0)
@@ -151,10 +151,10 @@ void lz_scene_unbind(lz_scene *s)
 
 /* Set key = value from `where` (line 0: an override, which replaces an earlier
  * value; otherwise a second value for a key is an error). */
-static int lz_scene_put(lz_scene *s, const char *key, const char *value, const char *where,
+static int scene_put(lz_scene *s, const char *key, const char *value, const char *where,
                         int line)
 {
-	int i = lz_scene_find(s, key);
+	int i = scene_find(s, key);
 	if (i >= 0 && line > 0)
 		return lz_error(LZ_ESYNTAX, "%s: key '%s' given twice (first at line %d)", where,
 		                key, s->e[i].line);
@@ -204,7 +204,7 @@ lz_scene *lz_scene_new(const char *name)
 }
 
 /* The base name of path without ".scene": the scene's name and its default run dir. */
-static void lz_scene_name_of(const char *path, char *buf, size_t size)
+static void scene_name_of(const char *path, char *buf, size_t size)
 {
 	const char *base = strrchr(path, '/');
 	base = base ? base + 1 : path;
@@ -215,7 +215,7 @@ static void lz_scene_name_of(const char *path, char *buf, size_t size)
 }
 
 /* The lines of a whole file (len bytes) into s. */
-static int lz_scene_parse(lz_scene *s, const char *text, size_t len)
+static int scene_parse(lz_scene *s, const char *text, size_t len)
 {
 	char buf[LZ_SCENE_LINE_MAX + 1], where[LZ_SCENE_LINE_MAX + 32];
 	const char *end = text + len;
@@ -226,9 +226,9 @@ static int lz_scene_parse(lz_scene *s, const char *text, size_t len)
 		size_t n = nl ? (size_t)(nl - text) : (size_t)(end - text);
 		char *key, *value;
 		snprintf(where, sizeof where, "%s:%d", s->origin, line);
-		int rc = lz_parse_line(text, n, where, buf, &key, &value);
+		int rc = parse_line(text, n, where, buf, &key, &value);
 		if (rc == 1)
-			rc = lz_scene_put(s, key, value, where, line);
+			rc = scene_put(s, key, value, where, line);
 		if (rc != LZ_OK)
 			return rc;
 		text = nl ? nl + 1 : end;
@@ -241,7 +241,7 @@ static int lz_scene_parse(lz_scene *s, const char *text, size_t len)
 /* The contents of f, at most LZ_SCENE_FILE_MAX + 1 bytes (so that a huge file or an
  * endless device costs no more), in a buffer that grows with what is there. NULL
  * when out of memory; *err is the errno of a failed read, else 0. */
-static char *lz_read_capped(FILE *f, size_t *len, int *err)
+static char *read_capped(FILE *f, size_t *len, int *err)
 {
 	size_t cap = 4096, n = 0;
 	char *buf = malloc(cap);
@@ -270,10 +270,10 @@ lz_scene *lz_scene_read(const char *path)
 	}
 	size_t len;
 	int err;
-	char *text = lz_read_capped(f, &len, &err);
+	char *text = read_capped(f, &len, &err);
 	fclose(f);
 	char name[256];
-	lz_scene_name_of(path, name, sizeof name);
+	scene_name_of(path, name, sizeof name);
 	lz_scene *s = NULL;
 	if (!text)
 		lz_error(LZ_ENOMEM, "no memory to read scene '%s'", path);
@@ -286,7 +286,7 @@ lz_scene *lz_scene_read(const char *path)
 	else if ((s = lz_scene_new(name))) {
 		free(s->origin);
 		s->origin = strdup(path);
-		if (!s->origin || lz_scene_parse(s, text, len) != LZ_OK) {
+		if (!s->origin || scene_parse(s, text, len) != LZ_OK) {
 			if (!s->origin)
 				lz_error(LZ_ENOMEM, "no memory to read scene '%s'", path);
 			lz_scene_free(s);
@@ -301,11 +301,11 @@ int lz_scene_set(lz_scene *s, const char *assignment, const char *origin)
 {
 	const char *where = origin ? origin : "command line";
 	char buf[LZ_SCENE_LINE_MAX + 1], *key, *value;
-	int rc = lz_parse_line(assignment, strlen(assignment), where, buf, &key, &value);
+	int rc = parse_line(assignment, strlen(assignment), where, buf, &key, &value);
 	if (rc == 0)
 		return lz_error(LZ_ESYNTAX, "%s: expected 'key=value', found '%s'", where,
 		                assignment);
-	return rc == 1 ? lz_scene_put(s, key, value, where, 0) : rc;
+	return rc == 1 ? scene_put(s, key, value, where, 0) : rc;
 }
 
 void lz_scene_free(lz_scene *s)
@@ -331,13 +331,13 @@ const char *lz_scene_name(const lz_scene *s)
 
 const char *lz_scene_method(const lz_scene *s)
 {
-	int i = lz_scene_find(s, "method");
+	int i = scene_find(s, "method");
 	return i >= 0 ? s->e[i].value : NULL;
 }
 
 /* ---- binding ---- */
 
-static int lz_key_index(const lz_key_table *t, const char *key)
+static int key_index(const lz_key_table *t, const char *key)
 {
 	for (size_t i = 0; i < t->n; i++)
 		if (strcmp(t->key[i].name, key) == 0)
@@ -346,7 +346,7 @@ static int lz_key_index(const lz_key_table *t, const char *key)
 }
 
 /* Levenshtein distance, for "did you mean". b is a table key (short). */
-static size_t lz_edit_distance(const char *a, const char *b)
+static size_t edit_distance(const char *a, const char *b)
 {
 	enum { MAXB = 64 };
 	size_t row[MAXB + 1], nb = strlen(b);
@@ -369,13 +369,13 @@ static size_t lz_edit_distance(const char *a, const char *b)
 	return row[nb];
 }
 
-static int lz_unknown_key(const lz_scene *s, const lz_entry *e)
+static int unknown_key(const lz_scene *s, const lz_entry *e)
 {
 	char keys[1024] = "", hint[128] = "";
 	size_t len = 0, best = (size_t)-1;
 	for (size_t i = 0; i < s->t->n; i++) {
 		const char *name = s->t->key[i].name;
-		size_t d = lz_edit_distance(e->key, name);
+		size_t d = edit_distance(e->key, name);
 		size_t longer = strlen(e->key) > strlen(name) ? strlen(e->key) : strlen(name);
 		/* A suggestion sharing less than half its letters would only confuse. */
 		if (d < best && 2 * d <= longer) {
@@ -392,7 +392,7 @@ static int lz_unknown_key(const lz_scene *s, const lz_entry *e)
 
 /* 0: an integer in *x; 1: not an integer; 2: an integer beyond any range we keep.
  * "1e6" is accepted: physicists write step counts that way. */
-static int lz_parse_integer(const char *text, long long *x)
+static int parse_integer(const char *text, long long *x)
 {
 	char *end;
 	errno = 0;
@@ -409,13 +409,13 @@ static int lz_parse_integer(const char *text, long long *x)
 	return 0;
 }
 
-static int lz_in_range(const lz_key *k, double x)
+static int in_range(const lz_key *k, double x)
 {
 	return (k->min_open ? x > k->min : x >= k->min) &&
 	       (k->max_open ? x < k->max : x <= k->max);
 }
 
-static int lz_out_of_range(const lz_key *k, const char *text, const char *where)
+static int out_of_range(const lz_key *k, const char *text, const char *where)
 {
 	return lz_error(LZ_EINVAL, "%s: key '%s' = %s is out of range %c%g, %g%c", where,
 	                k->name, text, k->min_open ? '(' : '[', k->min, k->max,
@@ -423,7 +423,7 @@ static int lz_out_of_range(const lz_key *k, const char *text, const char *where)
 }
 
 /* The index of word `text` in "a|b|c", or -1. */
-static int lz_choice_index(const char *choices, const char *text)
+static int choice_index(const char *choices, const char *text)
 {
 	size_t n = strlen(text);
 	int i = 0;
@@ -437,7 +437,7 @@ static int lz_choice_index(const char *choices, const char *text)
 	return -1;
 }
 
-static int lz_parse_bool(const char *text)
+static int parse_bool(const char *text)
 {
 	static const char *const words[] = {"false", "true", "no", "yes", "0", "1"};
 	for (int i = 0; i < 6; i++)
@@ -446,19 +446,19 @@ static int lz_parse_bool(const char *text)
 	return -1;
 }
 
-static int lz_value_int(const lz_key *k, const char *text, const char *where, lz_value *v)
+static int value_int(const lz_key *k, const char *text, const char *where, lz_value *v)
 {
-	int rc = lz_parse_integer(text, &v->integer);
+	int rc = parse_integer(text, &v->integer);
 	if (rc == 1)
 		return lz_error(LZ_EINVAL, "%s: key '%s' = %s must be an integer", where, k->name,
 		                text);
-	if (rc == 2 || !lz_in_range(k, (double)v->integer))
-		return lz_out_of_range(k, text, where);
+	if (rc == 2 || !in_range(k, (double)v->integer))
+		return out_of_range(k, text, where);
 	v->real = (double)v->integer;
 	return LZ_OK;
 }
 
-static int lz_value_real(const lz_key *k, const char *text, const char *where, lz_value *v)
+static int value_real(const lz_key *k, const char *text, const char *where, lz_value *v)
 {
 	char *end;
 	v->real = strtod(text, &end);
@@ -468,43 +468,43 @@ static int lz_value_real(const lz_key *k, const char *text, const char *where, l
 	if (!isfinite(v->real))  /* nan, inf, and overflow such as 1e999 */
 		return lz_error(LZ_EINVAL, "%s: key '%s' = %s must be a finite number", where,
 		                k->name, text);
-	return lz_in_range(k, v->real) ? LZ_OK : lz_out_of_range(k, text, where);
+	return in_range(k, v->real) ? LZ_OK : out_of_range(k, text, where);
 }
 
-static int lz_value_seed(const lz_key *k, const char *text, const char *where, lz_value *v)
+static int value_seed(const lz_key *k, const char *text, const char *where, lz_value *v)
 {
 	if (strcmp(text, "auto") == 0) {
 		v->integer = (long long)lz_seed_auto();
 		return LZ_OK;
 	}
 	static const lz_key seed_range = {.min = 1, .max = (double)LZ_SEED_MAX};
-	int rc = lz_parse_integer(text, &v->integer);
+	int rc = parse_integer(text, &v->integer);
 	if (rc == 1)
 		return lz_error(LZ_EINVAL, "%s: key '%s' = %s must be 'auto' or an integer",
 		                where, k->name, text);
-	if (rc == 2 || !lz_in_range(&seed_range, (double)v->integer))
+	if (rc == 2 || !in_range(&seed_range, (double)v->integer))
 		return lz_error(LZ_EINVAL, "%s: key '%s' = %s is out of range [1, %lu]", where,
 		                k->name, text, LZ_SEED_MAX);
 	return LZ_OK;
 }
 
-static int lz_value_parse(const lz_key *k, const char *text, const char *where, lz_value *v)
+static int value_parse(const lz_key *k, const char *text, const char *where, lz_value *v)
 {
 	switch (k->type) {
 	case LZ_KEY_INT:
-		return lz_value_int(k, text, where, v);
+		return value_int(k, text, where, v);
 	case LZ_KEY_REAL:
-		return lz_value_real(k, text, where, v);
+		return value_real(k, text, where, v);
 	case LZ_KEY_SEED:
-		return lz_value_seed(k, text, where, v);
+		return value_seed(k, text, where, v);
 	case LZ_KEY_ENUM:
-		v->integer = lz_choice_index(k->choices ? k->choices : "", text);
+		v->integer = choice_index(k->choices ? k->choices : "", text);
 		if (v->integer < 0)
 			return lz_error(LZ_EINVAL, "%s: key '%s' = %s must be one of %s", where,
 			                k->name, text, k->choices);
 		return LZ_OK;
 	case LZ_KEY_BOOL:
-		v->integer = lz_parse_bool(text);
+		v->integer = parse_bool(text);
 		if (v->integer < 0)
 			return lz_error(LZ_EINVAL, "%s: key '%s' = %s must be true or false (or "
 			                "yes/no, 1/0)", where, k->name, text);
@@ -517,14 +517,14 @@ static int lz_value_parse(const lz_key *k, const char *text, const char *where, 
 }
 
 /* Every entry must be a key of m; `method`, when given, must name m. */
-static int lz_scene_check_entries(const lz_scene *s)
+static int scene_check_entries(const lz_scene *s)
 {
 	for (size_t i = 0; i < s->n; i++) {
 		const lz_entry *e = &s->e[i];
-		if (lz_key_index(s->t, e->key) >= 0)
+		if (key_index(s->t, e->key) >= 0)
 			continue;
 		if (strcmp(e->key, "method") != 0)
-			return lz_unknown_key(s, e);
+			return unknown_key(s, e);
 		if (strcmp(e->value, s->t->method) != 0)
 			return lz_error(LZ_EINVAL, "%s: method = %s, but the scene is bound to "
 			                "method %s", e->where, e->value, s->t->method);
@@ -533,12 +533,12 @@ static int lz_scene_check_entries(const lz_scene *s)
 }
 
 /* Parse the value of every key of the table, given or default. */
-static int lz_scene_parse_values(lz_scene *s)
+static int scene_parse_values(lz_scene *s)
 {
 	for (size_t i = 0; i < s->t->n; i++) {
 		const lz_key *k = &s->t->key[i];
 		lz_value *v = &s->v[i];
-		v->entry = lz_scene_find(s, k->name);
+		v->entry = scene_find(s, k->name);
 		v->text = v->entry >= 0 ? s->e[v->entry].value : k->def;
 		if (!v->text)
 			return lz_error(LZ_EINVAL, "%s: missing key '%s' (%s), which method %s "
@@ -550,7 +550,7 @@ static int lz_scene_parse_values(lz_scene *s)
 		}
 		char def[256];
 		snprintf(def, sizeof def, "method %s: the default", s->t->method);
-		int rc = lz_value_parse(k, v->text, v->entry >= 0 ? s->e[v->entry].where : def, v);
+		int rc = value_parse(k, v->text, v->entry >= 0 ? s->e[v->entry].where : def, v);
 		if (rc != LZ_OK)
 			return rc;
 	}
@@ -566,9 +566,9 @@ int lz_scene_bind(lz_scene *s, const lz_key_table *t)
 	s->v = calloc(t->n ? t->n : 1, sizeof *s->v);
 	int rc = s->v ? LZ_OK : lz_error(LZ_ENOMEM, "%s: no memory to bind", s->origin);
 	if (rc == LZ_OK)
-		rc = lz_scene_check_entries(s);
+		rc = scene_check_entries(s);
 	if (rc == LZ_OK)
-		rc = lz_scene_parse_values(s);
+		rc = scene_parse_values(s);
 	if (rc != LZ_OK)
 		lz_scene_unbind(s);
 	return rc;
@@ -576,28 +576,28 @@ int lz_scene_bind(lz_scene *s, const lz_key_table *t)
 
 /* ---- typed access ---- */
 
-static const char *lz_type_name(lz_key_type t)
+static const char *type_name(lz_key_type t)
 {
 	static const char *const names[] = {"integer", "real", "enum", "seed", "bool", "text"};
 	return (unsigned)t < sizeof names / sizeof names[0] ? names[t] : "?";
 }
 
 /* The value of `key` if it is declared with one of the types in mask (bit 1 << type). */
-static const lz_value *lz_scene_value(const lz_scene *s, const char *key, unsigned mask)
+static const lz_value *scene_value(const lz_scene *s, const char *key, unsigned mask)
 {
 	if (!s->t) {
 		lz_error(LZ_EINVAL, "%s: scene asked for key '%s' before lz_scene_bind", s->origin,
 		         key);
 		return NULL;
 	}
-	int i = lz_key_index(s->t, key);
+	int i = key_index(s->t, key);
 	if (i < 0) {
 		lz_error(LZ_EINVAL, "method %s has no key '%s'", s->t->method, key);
 		return NULL;
 	}
 	if (!(mask >> s->t->key[i].type & 1)) {
 		lz_error(LZ_EINVAL, "key '%s' of method %s is of type %s, asked for another type",
-		         key, s->t->method, lz_type_name(s->t->key[i].type));
+		         key, s->t->method, type_name(s->t->key[i].type));
 		return NULL;
 	}
 	return &s->v[i];
@@ -607,49 +607,49 @@ static const lz_value *lz_scene_value(const lz_scene *s, const char *key, unsign
 
 double lz_scene_real(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, LZ_T(LZ_KEY_REAL) | LZ_T(LZ_KEY_INT));
+	const lz_value *v = scene_value(s, key, LZ_T(LZ_KEY_REAL) | LZ_T(LZ_KEY_INT));
 	return v && v->text ? v->real : 0.0;
 }
 
 long long lz_scene_int(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, LZ_T(LZ_KEY_INT) | LZ_T(LZ_KEY_SEED));
+	const lz_value *v = scene_value(s, key, LZ_T(LZ_KEY_INT) | LZ_T(LZ_KEY_SEED));
 	return v && v->text ? v->integer : 0;
 }
 
 int lz_scene_bool(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, LZ_T(LZ_KEY_BOOL));
+	const lz_value *v = scene_value(s, key, LZ_T(LZ_KEY_BOOL));
 	return v && v->text ? (int)v->integer : 0;
 }
 
 const char *lz_scene_text(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, ~0u);
+	const lz_value *v = scene_value(s, key, ~0u);
 	return v && v->text ? v->text : "";
 }
 
 int lz_scene_enum(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, LZ_T(LZ_KEY_ENUM));
+	const lz_value *v = scene_value(s, key, LZ_T(LZ_KEY_ENUM));
 	return !v ? 0 : v->text ? (int)v->integer : -1;
 }
 
 unsigned long lz_scene_seed(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, LZ_T(LZ_KEY_SEED));
+	const lz_value *v = scene_value(s, key, LZ_T(LZ_KEY_SEED));
 	return v && v->text ? (unsigned long)v->integer : 0;
 }
 
 int lz_scene_has(const lz_scene *s, const char *key)
 {
-	const lz_value *v = lz_scene_value(s, key, ~0u);
+	const lz_value *v = scene_value(s, key, ~0u);
 	return v && v->text;
 }
 
 int lz_scene_given(const lz_scene *s, const char *key)
 {
-	return lz_scene_find(s, key) >= 0;
+	return scene_find(s, key) >= 0;
 }
 
 int lz_scene_fail(const lz_scene *s, const char *key, const char *fmt, ...)
@@ -659,7 +659,7 @@ int lz_scene_fail(const lz_scene *s, const char *key, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(msg, sizeof msg, fmt, ap);
 	va_end(ap);
-	int i = lz_scene_find(s, key);
+	int i = scene_find(s, key);
 	return lz_error(LZ_EINVAL, "%s: %s", i >= 0 ? s->e[i].where : s->origin, msg);
 }
 

@@ -12,7 +12,7 @@ static _Thread_local char last_message[MESSAGE_MAX];
 static lz_error_handler *error_handler;  /* NULL: the default, print on stderr */
 static lz_todo_handler *todo_handler;    /* NULL: print on stderr */
 
-static void lz_error_default(int code, const char *message)
+static void error_default(int code, const char *message)
 {
 	fprintf(stderr, "lz: %s\n", message);
 }
@@ -23,7 +23,7 @@ int lz_error(int code, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(last_message, sizeof last_message, fmt, ap);
 	va_end(ap);
-	(error_handler ? error_handler : lz_error_default)(code, last_message);
+	(error_handler ? error_handler : error_default)(code, last_message);
 	return code;
 }
 
@@ -34,7 +34,7 @@ const char *lz_error_message(void)
 
 lz_error_handler *lz_set_error_handler(lz_error_handler *h)
 {
-	lz_error_handler *old = error_handler ? error_handler : lz_error_default;
+	lz_error_handler *old = error_handler ? error_handler : error_default;
 	error_handler = h;
 	return old;
 }

@@ -62,7 +62,7 @@ lz_data *lz_data_open(const char *path, const char *title, int ncol,
 }
 
 /* printf would write "-nan" for some NaNs; gnuplot and readers expect nan, inf, -inf. */
-static void lz_data_value(FILE *f, double v)
+static void data_value(FILE *f, double v)
 {
 	if (isnan(v))
 		fputs("nan", f);
@@ -77,7 +77,7 @@ void lz_data_row(lz_data *d, const double *values)
 	for (int i = 0; i < d->ncol; i++) {
 		if (i)
 			fputc(' ', d->f);
-		lz_data_value(d->f, values[i]);
+		data_value(d->f, values[i]);
 	}
 	fputc('\n', d->f);
 }
@@ -145,7 +145,7 @@ lz_json *lz_json_open(const char *path)
 
 /* A JSON string: quotes and backslashes escaped, control characters as \uXXXX.
  * Other bytes pass through: the text is UTF-8. */
-static void lz_json_string(FILE *f, const char *s, const char *suffix)
+static void json_string(FILE *f, const char *s, const char *suffix)
 {
 	fputc('"', f);
 	for (int part = 0; part < 2; part++, s = suffix)
@@ -161,7 +161,7 @@ static void lz_json_string(FILE *f, const char *s, const char *suffix)
 }
 
 /* FNV-1a of key followed by suffix. */
-static uint64_t lz_json_hash(const char *key, const char *suffix)
+static uint64_t json_hash(const char *key, const char *suffix)
 {
 	uint64_t h = 14695981039346656037ULL;
 	for (int part = 0; part < 2; part++, key = suffix)
@@ -170,9 +170,9 @@ static uint64_t lz_json_hash(const char *key, const char *suffix)
 	return h;
 }
 
-static void lz_json_remember(lz_json *j, const char *key, const char *suffix)
+static void json_remember(lz_json *j, const char *key, const char *suffix)
 {
-	uint64_t h = lz_json_hash(key, suffix);
+	uint64_t h = json_hash(key, suffix);
 	int known = j->n < JSON_KEYS_MAX ? j->n : JSON_KEYS_MAX;
 	for (int i = 0; i < known && !j->twice[0]; i++)
 		if (j->hash[i] == h)
@@ -182,15 +182,15 @@ static void lz_json_remember(lz_json *j, const char *key, const char *suffix)
 }
 
 /* Start the member `key suffix`: separator, name, colon. */
-static void lz_json_key(lz_json *j, const char *key, const char *suffix)
+static void json_key(lz_json *j, const char *key, const char *suffix)
 {
-	lz_json_remember(j, key, suffix);
+	json_remember(j, key, suffix);
 	fputs(j->n++ ? ",\n  " : "\n  ", j->f);
-	lz_json_string(j->f, key, suffix);
+	json_string(j->f, key, suffix);
 	fputs(": ", j->f);
 }
 
-static void lz_json_number(FILE *f, double v)
+static void json_number(FILE *f, double v)
 {
 	if (isfinite(v))
 		fprintf(f, "%.17g", v);
@@ -200,33 +200,33 @@ static void lz_json_number(FILE *f, double v)
 
 void lz_json_num(lz_json *j, const char *key, double v)
 {
-	lz_json_key(j, key, NULL);
-	lz_json_number(j->f, v);
+	json_key(j, key, NULL);
+	json_number(j->f, v);
 }
 
 void lz_json_int(lz_json *j, const char *key, long long v)
 {
-	lz_json_key(j, key, NULL);
+	json_key(j, key, NULL);
 	fprintf(j->f, "%lld", v);
 }
 
 void lz_json_str(lz_json *j, const char *key, const char *v)
 {
-	lz_json_key(j, key, NULL);
-	lz_json_string(j->f, v, NULL);
+	json_key(j, key, NULL);
+	json_string(j->f, v, NULL);
 }
 
 void lz_json_bool(lz_json *j, const char *key, int v)
 {
-	lz_json_key(j, key, NULL);
+	json_key(j, key, NULL);
 	fputs(v ? "true" : "false", j->f);
 }
 
 void lz_json_err(lz_json *j, const char *key, double v, double err)
 {
 	lz_json_num(j, key, v);
-	lz_json_key(j, key, "_err");
-	lz_json_number(j->f, err);
+	json_key(j, key, "_err");
+	json_number(j->f, err);
 }
 
 int lz_json_end(lz_json *j)
@@ -253,7 +253,7 @@ int lz_json_end(lz_json *j)
 /* Whether `path` may be replaced by a run: absent, an empty directory, or a directory
  * with a summary.json (a run's). Anything else may be a user's own directory (--out ~
  * is one typo away), and lz never deletes those. */
-static int lz_rundir_replaceable(const char *path, int *exists)
+static int rundir_replaceable(const char *path, int *exists)
 {
 	struct stat st;
 	*exists = 0;
@@ -287,7 +287,7 @@ static int lz_rundir_replaceable(const char *path, int *exists)
 }
 
 /* mkdir -p of the directories above `path`. */
-static int lz_mkdir_parents(const char *path)
+static int mkdir_parents(const char *path)
 {
 	char buf[sizeof ((lz_rundir *)0)->final];
 	snprintf(buf, sizeof buf, "%s", path);
@@ -318,7 +318,7 @@ int lz_rundir_begin(lz_rundir *d, const char *out)
 	if (!*base || strcmp(base, ".") == 0 || strcmp(base, "..") == 0)
 		return lz_error(LZ_EINVAL, "output directory '%s' must name a directory of its "
 		                "own (not /, . or ..)", out);
-	int exists, rc = lz_rundir_replaceable(d->final, &exists);
+	int exists, rc = rundir_replaceable(d->final, &exists);
 	if (rc != LZ_OK)
 		return rc;
 	int len = snprintf(d->tmp, sizeof d->tmp, "%s.partial-%ld", d->final, (long)getpid());
@@ -327,7 +327,7 @@ int lz_rundir_begin(lz_rundir *d, const char *out)
 		return lz_error(LZ_EINVAL, "output directory name '%s' is too long", out);
 	}
 	/* A directory of that name is left over from a crashed run whose pid we reuse. */
-	if ((rc = lz_mkdir_parents(d->final)) != LZ_OK || (rc = lz_rmtree(d->tmp)) != LZ_OK) {
+	if ((rc = mkdir_parents(d->final)) != LZ_OK || (rc = lz_rmtree(d->tmp)) != LZ_OK) {
 		d->tmp[0] = '\0';
 		return rc;
 	}
@@ -356,7 +356,7 @@ int lz_rundir_commit(lz_rundir *d)
 	if (!d->tmp[0])
 		return lz_error(LZ_EINVAL, "no run directory to commit (begin failed or already "
 		                "committed)");
-	int exists, rc = lz_rundir_replaceable(d->final, &exists);
+	int exists, rc = rundir_replaceable(d->final, &exists);
 	if (rc != LZ_OK)
 		return rc;
 	char old[sizeof d->final + 32];
@@ -385,7 +385,7 @@ void lz_rundir_abort(lz_rundir *d)
 }
 
 /* nftw callback: remove one entry; a non-zero return (errno) stops the walk. */
-static int lz_rmtree_entry(const char *path, const struct stat *st, int flag,
+static int rmtree_entry(const char *path, const struct stat *st, int flag,
                            struct FTW *ftw)
 {
 	return remove(path) == 0 ? 0 : errno ? errno : EIO;
@@ -399,7 +399,7 @@ int lz_rmtree(const char *path)
 		       : lz_error(LZ_EIO, "cannot remove '%s': %s", path, strerror(errno));
 	/* Children first (FTW_DEPTH); symbolic links removed, never followed (FTW_PHYS);
 	 * nothing on another file system (FTW_MOUNT). */
-	int rc = nftw(path, lz_rmtree_entry, 16, FTW_DEPTH | FTW_PHYS | FTW_MOUNT);
+	int rc = nftw(path, rmtree_entry, 16, FTW_DEPTH | FTW_PHYS | FTW_MOUNT);
 	if (rc != 0)
 		return lz_error(LZ_EIO, "cannot remove '%s' (or something in it): %s", path,
 		                strerror(rc > 0 ? rc : errno));
@@ -409,7 +409,7 @@ int lz_rmtree(const char *path)
 /* ---- gnuplot ---- */
 
 /* gnuplot's complaint, on one line: newlines and runs of spaces squeezed. */
-static void lz_squeeze(char *s)
+static void squeeze(char *s)
 {
 	char *w = s;
 	for (const char *r = s; *r; r++) {
@@ -426,7 +426,7 @@ static void lz_squeeze(char *s)
 /* Exit statuses of the child before gnuplot runs: as a shell reports them. */
 enum { LZ_CHILD_NO_DIR = 126, LZ_CHILD_NO_EXEC = 127 };
 
-static void lz_gnuplot_child(const char *dir, const char *script, int err)
+static void gnuplot_child(const char *dir, const char *script, int err)
 {
 	int null = open("/dev/null", O_RDWR);
 	if (null >= 0) {
@@ -453,7 +453,7 @@ int lz_gnuplot(const char *dir, const char *script)
 	}
 	if (pid == 0) {
 		close(pipefd[0]);
-		lz_gnuplot_child(dir, script, pipefd[1]);
+		gnuplot_child(dir, script, pipefd[1]);
 	}
 	close(pipefd[1]);
 	/* Keep the start of gnuplot's stderr for the message; drain the rest. */
@@ -481,7 +481,7 @@ int lz_gnuplot(const char *dir, const char *script)
 		return 1;
 	if (WIFEXITED(status) && WEXITSTATUS(status) == LZ_CHILD_NO_DIR)
 		return lz_error(LZ_EIO, "gnuplot: cannot enter directory '%s'", dir);
-	lz_squeeze(msg);
+	squeeze(msg);
 	return lz_error(LZ_EIO, "gnuplot %s (in %s) failed (%s %d): %s", script, dir,
 	                WIFEXITED(status) ? "exit status" : "signal",
 	                WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status),

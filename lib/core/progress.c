@@ -19,7 +19,7 @@ void lz_progress_begin(lz_progress *p, const char *label, double total)
 }
 
 /* "12.3 s", "4 min 05 s", "2 h 07 min": short enough to keep the line on one row. */
-static void lz_progress_time(double s, char *buf, size_t size)
+static void progress_time(double s, char *buf, size_t size)
 {
 	if (!(s >= 0) || s > 1e8)
 		snprintf(buf, size, "?");
@@ -44,8 +44,8 @@ void lz_progress_update(lz_progress *p, double done)
 	frac = frac < 0 ? 0 : frac > 1 ? 1 : frac;
 	double elapsed = now - p->start;
 	char el[32], eta[32];
-	lz_progress_time(elapsed, el, sizeof el);
-	lz_progress_time(frac > 0 ? elapsed * (1 - frac) / frac : -1, eta, sizeof eta);
+	progress_time(elapsed, el, sizeof el);
+	progress_time(frac > 0 ? elapsed * (1 - frac) / frac : -1, eta, sizeof eta);
 	/* ESC[K (erase to the end of the line) clears what a longer line left. */
 	fprintf(stderr, "\r\033[K%s %5.1f%%  %s elapsed, ETA %s", p->label, 100 * frac, el, eta);
 	fflush(stderr);

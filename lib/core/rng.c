@@ -11,7 +11,7 @@
 #include "lz/rng.h"
 
 /* The gsl_rng type called `name`, or NULL. */
-static const gsl_rng_type *lz_rng_type_find(const char *name)
+static const gsl_rng_type *rng_type_find(const char *name)
 {
 	for (const gsl_rng_type **t = gsl_rng_types_setup(); *t; t++)
 		if (strcmp((*t)->name, name) == 0)
@@ -22,7 +22,7 @@ static const gsl_rng_type *lz_rng_type_find(const char *name)
 lz_rng *lz_rng_alloc(const char *type, unsigned long seed)
 {
 	const char *name = type ? type : "mt19937";
-	const gsl_rng_type *t = lz_rng_type_find(name);
+	const gsl_rng_type *t = rng_type_find(name);
 	if (!t) {
 		lz_error(LZ_EINVAL, "unknown random number generator '%s' (GSL has e.g. mt19937, "
 		         "ranlxd2, taus2, ranlux389, gfsr4)", name);
@@ -55,7 +55,7 @@ void lz_rng_free(lz_rng *r)
 
 /* splitmix64's finaliser: every input bit changes about half the output bits, so
  * nearby clock readings and pids give unrelated seeds. */
-static uint64_t lz_mix64(uint64_t x)
+static uint64_t mix64(uint64_t x)
 {
 	x ^= x >> 30;
 	x *= 0xbf58476d1ce4e5b9ULL;
@@ -71,7 +71,7 @@ unsigned long lz_seed_auto(void)
 	struct timespec ts;
 	clock_gettime(CLOCK_REALTIME, &ts);
 	uint64_t x = (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-	x = lz_mix64(x ^ lz_mix64((uint64_t)getpid() << 20 ^ atomic_fetch_add(&calls, 1)));
+	x = mix64(x ^ mix64((uint64_t)getpid() << 20 ^ atomic_fetch_add(&calls, 1)));
 	return 1 + (unsigned long)(x % LZ_SEED_MAX);
 }
 

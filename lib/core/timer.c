@@ -3,7 +3,7 @@
 
 #include "lz/timer.h"
 
-static double lz_clock_seconds(clockid_t id)
+static double clock_seconds(clockid_t id)
 {
 	struct timespec ts;
 	clock_gettime(id, &ts);
@@ -12,10 +12,10 @@ static double lz_clock_seconds(clockid_t id)
 
 double lz_wall_now(void)
 {
-	return lz_clock_seconds(CLOCK_MONOTONIC);
+	return clock_seconds(CLOCK_MONOTONIC);
 }
 
 double lz_cpu_now(void)
 {
-	return lz_clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
+	return clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
 }
