@@ -75,6 +75,8 @@ LINK = @mkdir -p $(@D); echo "  LD      $@"; $(CC) $(LDFLAGS) -o $@ $(filter %.o
 
 $(BUILD)/obj/lib/%.o: lib/%.c $(BUILD)/flags.stamp
 	$(COMPILE)
+# The literature tables are read from this tree's datasets/reference ($LZ_REFERENCE_DIR overrides).
+$(BUILD)/obj/lib/core/reference.o: EXTRA_INC = -DLZ_REFERENCE_DIR='"$(abspath datasets/reference)"'
 # Stage objects are named <stage>-<file>.o so that archive members never collide.
 define stage_rule
 $(BUILD)/obj/$(2)/$(1)-%.o: $(2)/$(1)/%.c $(BUILD)/flags.stamp

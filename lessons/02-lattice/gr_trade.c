@@ -5,9 +5,9 @@
  * Monte Carlo (lz/hdmc.h), its g(r) in fine bins of σ/96 with error bars from
  * NBLOCK consecutive blocks of the chain, and its contact value g(σ+), fitted, turned
  * into the pressure Z = 1 + 2η g(σ+) and checked against the hard-disk equation of
- * state (Z_ref(0.4) = 2.8293 from the resummed virial series; the small step from 0.4
- * to the η actually run is taken from Henderson's Z_H, whose slope is right to well
- * below the error here).
+ * state (Z_ref(0.4) = 2.8293 from the resummed virial series, read from
+ * datasets/reference/hard-disks.csv; the small step from 0.4 to the η actually run is
+ * taken from Henderson's Z_H, whose slope is right to well below the error here).
  *
  * The lattice runs: the same N random walkers (lz/walk.h) of radius R = 3, 6, 12, 24
  * on the triangular lattice (sheared, 6 directions). The box side is fixed by the
@@ -56,6 +56,7 @@
 #include "lz/lattice.h"
 #include "lz/lesson.h"
 #include "lz/output.h"
+#include "lz/reference.h"
 #include "lz/rng.h"
 #include "lz/timer.h"
 #include "lz/walk.h"
@@ -70,8 +71,6 @@
 #define NFINE (RMAX * FINE)
 #define ERR_HI 2.5            /* the error is measured on [1, ERR_HI) σ */
 #define CONTACT_WIDTH 0.1     /* ln g fitted on [1, 1.1] σ for g(σ+) */
-#define ZREF 2.8293           /* hard disks at η = 0.4, reference README §2 */
-#define ZREF_ERR 5e-4
 #define NSIGMA 3.0            /* "within its statistical error": 3 error bars */
 #define MAXSH (2 * RMAX * 24) /* lattice shells up to 3σ at the largest R */
 
@@ -103,6 +102,7 @@ typedef struct {
 	double gm[NFINE], ge[NFINE];  /* mean and its error over the blocks */
 	double z[NBLOCK];          /* Z from each block's contact value */
 	double zm, ze, zexp;       /* mean, error, and the equation of state at eta */
+	double zexp_err;           /* the uncertainty of zexp */
 	double acceptance, delta, seconds;
 	size_t overlaps;
 	gsl_histogram *hist;       /* the bin edges (and the last block's counts) */
@@ -201,7 +201,11 @@ static int run_reference(size_t n, double eta, const sizes *sz, gsl_rng *rng, re
 	for (size_t i = 0; i < NFINE; i++)
 		block_stats(&ref->g[0][i], NFINE, &ref->gm[i], &ref->ge[i]);
 	block_stats(ref->z, 1, &ref->zm, &ref->ze);
-	ref->zexp = ZREF * z_henderson(eta) / z_henderson(ETA);
+	lz_ref z;  /* Z_ref at ETA (datasets/reference/hard-disks.csv), carried to eta */
+	if ((status = lz_reference("hard-disks.csv", "Z", "2", "eta=0.40", &z)) != LZ_OK)
+		goto out;
+	ref->zexp = z.value * z_henderson(eta) / z_henderson(ETA);
+	ref->zexp_err = z.err;
 out:
 	lz_hdmc_free(h);
 	return status;
@@ -480,7 +484,7 @@ static void checks_others(lz_lesson *L, const lattice_run *other)
 static void checks(lz_lesson *L, const reference *ref, const lattice_run *lr)
 {
 	const lattice_run *lo = &lr[0], *hi = &lr[NR - 1];
-	double dev = (ref->zm - ref->zexp) / hypot(ref->ze, ZREF_ERR);
+	double dev = (ref->zm - ref->zexp) / hypot(ref->ze, ref->zexp_err);
 	printf("  reference: no overlaps after %d blocks: %s\n", NBLOCK,
 	       lz_lesson_check(L, ref->overlaps == 0));
 	printf("  reference: contact Z = %.4f within %.0f error bars of %.4f (%+.1f): %s\n",

@@ -1,13 +1,13 @@
 /* rsa_jam — lesson 03, experiment (§5): random sequential adsorption to exact jamming
  * on lattices of finer and finer resolution, and what the resolution costs (thesis
- * 2.5.1, figs. 2.17-2.20; the stage's trade, DESIGN §7).
+ * 2.5.1, figs. 2.17-2.20; the stage's trade of cost against accuracy).
  *
  * Disks (spheres) of radius R lattice units are dropped at uniformly random free
  * sites (lz_field_rsa with no target) until no site is free: jammed, known exactly
  * from the field's count of free sites, never guessed from failed tries. The coverage
  * θ = N · (continuum area πR², volume 4πR³/3) / (box area) is compared with the
  * continuum jamming coverage of disks, 0.547069 ± 5e-6, and spheres, 0.38413 ± 2e-5
- * (reference README §4: Wang 1994; Zhang & Torquato 2013).
+ * (datasets/reference/rsa.csv: Wang 1994; Zhang & Torquato 2013).
  *
  * The lattice has its own jamming limit, and at small R it is a different problem:
  *   R = 1/2: σ = 1, the excluded shape d² < 1 is the centre site alone, so every site
@@ -16,8 +16,8 @@
  *     packing) and π/6 = 0.5236 on the cubic one, exactly, with no randomness left.
  *   R = 1 on the square lattice: d² < 4 is the 3×3 block, so two centres exclude each
  *     other iff |dx| <= 1 and |dy| <= 1 — RSA of 2×2 squares on the square lattice,
- *     whose jammed squares cover 0.74788 ± 2e-5 of the sites (reference README §4,
- *     [memory]): θ = (π/4) · 0.74788 = 0.5874. R = 1.5 is the 5×5 block (3×3
+ *     whose jammed squares cover 0.74788 ± 2e-5 of the sites (datasets/reference/
+ *     rsa.csv): θ = (π/4) · 0.74788 = 0.5874. R = 1.5 is the 5×5 block (3×3
  *     squares); R = 1 on the cubic lattice is the 3×3×3 block (2×2×2 cubes); on the
  *     triangular lattice R = 1 excludes the 19 sites at d² < 4.
  *   R >= 2: the shapes round off, and two lattice effects are left, both measured:
@@ -73,6 +73,7 @@
 #include "lz/lattice.h"
 #include "lz/lesson.h"
 #include "lz/output.h"
+#include "lz/reference.h"
 #include "lz/rng.h"
 #include "lz/timer.h"
 
@@ -81,26 +82,48 @@
 #define RFIT 3.0          /* the fits use R >= RFIT */
 #define MAXR 16           /* radii per lattice, at most */
 #define MAXRUNS 64
-#define SQUARES_2X2 0.74788  /* RSA of 2×2 squares on the square lattice (README §4) */
-#define SQUARES_2X2_ERR 2e-5
 
 /* A lattice and the radii run on it, with its continuum jamming coverage. */
 typedef struct {
 	lz_lattice_kind kind;
 	int nr;
 	const double *radii;
-	double cont, cont_err;   /* continuum θ_J and its error (reference README §4) */
+	double cont, cont_err;   /* continuum θ_J and its error (datasets/reference/rsa.csv) */
 	double full_limit;       /* θ at R = 1/2: every site taken */
 } series;
 
 static const double radii2[] = {0.5, 1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48};
 static const double radii3[] = {0.5, 1, 1.5, 2, 3, 4, 6, 8, 12};
 #define NSERIES 3
-static const series all[NSERIES] = {
-	{LZ_LATTICE_SQUARE, 13, radii2, 0.547069, 5e-6, M_PI / 4},
-	{LZ_LATTICE_TRIANGULAR, 13, radii2, 0.547069, 5e-6, M_PI / (2 * 1.7320508075688772)},
-	{LZ_LATTICE_CUBIC, 9, radii3, 0.38413, 2e-5, M_PI / 6},
+static series all[NSERIES] = {  /* cont, cont_err: read by read_references */
+	{LZ_LATTICE_SQUARE, 13, radii2, NAN, NAN, M_PI / 4},
+	{LZ_LATTICE_TRIANGULAR, 13, radii2, NAN, NAN, M_PI / (2 * 1.7320508075688772)},
+	{LZ_LATTICE_CUBIC, 9, radii3, NAN, NAN, M_PI / 6},
 };
+static lz_ref squares_2x2;  /* RSA of 2×2 squares on the square lattice */
+
+/* The literature values from datasets/reference/rsa.csv, and rsa_ref.gp, which hands
+ * the continuum coverages to the plot scripts. */
+static int read_references(lz_lesson *L)
+{
+	lz_ref disks, spheres;
+	if (lz_reference("rsa.csv", "jamming coverage", "2", "disks continuum", &disks) ||
+	    lz_reference("rsa.csv", "jamming coverage", "3", "spheres continuum", &spheres) ||
+	    lz_reference("rsa.csv", "jamming coverage", "2", "square lattice 2x2 squares",
+	                 &squares_2x2))
+		return LZ_EIO;
+	for (int k = 0; k < NSERIES; k++) {
+		lz_ref r = all[k].kind == LZ_LATTICE_CUBIC ? spheres : disks;
+		all[k].cont = r.value;
+		all[k].cont_err = r.err;
+	}
+	FILE *f = fopen(lz_lesson_path(L, "rsa_ref.gp"), "w");
+	if (!f)
+		return lz_error(LZ_EIO, "cannot write %s", lz_lesson_path(L, "rsa_ref.gp"));
+	fprintf(f, "# the continuum jamming coverages (datasets/reference/rsa.csv)\n"
+	        "theta_disks = %.7g\ntheta_spheres = %.7g\n", disks.value, spheres.value);
+	return fclose(f) == 0 ? LZ_OK : lz_error(LZ_EIO, "cannot write rsa_ref.gp");
+}
 
 /* How large and how many, per dimension: at least nmin particles per run (the box
  * side the smallest power of two in [lmin, lmax] that holds them), about ntot
@@ -340,8 +363,8 @@ static void checks(lz_lesson *L, const series *s, const point *p, int np, const 
 	if (s->kind == LZ_LATTICE_SQUARE) {
 		double frac = p[1].theta * 4 / M_PI, err = p[1].se * 4 / M_PI;
 		printf("  square, R = 1: RSA of 2x2 squares, sites covered %.5f +- %.5f against "
-		       "%.5f: %s\n", frac, err, SQUARES_2X2, lz_lesson_check(L, fabs(frac -
-		       SQUARES_2X2) < NSIG * hypot(err, SQUARES_2X2_ERR)));
+		       "%.5f: %s\n", frac, err, squares_2x2.value, lz_lesson_check(L, fabs(frac -
+		       squares_2x2.value) < NSIG * hypot(err, squares_2x2.err)));
 	}
 	double e = hypot(f_err(F), s->cont_err);
 	printf("  %s: theta_eff(R -> inf) = %.5f +- %.5f within %.0f error bars of the "
@@ -447,6 +470,8 @@ int main(int argc, char **argv)
 	if (lz_lesson_args(argc, argv, "03", &L) != LZ_OK)
 		return 2;
 	const sizes *sz = L.quick ? &quick : &full;
+	if (read_references(&L) != LZ_OK)
+		return lz_lesson_error(&L);
 	lz_rng *rng = lz_rng_alloc("mt19937", SEED);
 	if (!rng)
 		return lz_lesson_error(&L);

@@ -9,7 +9,8 @@ sel(k, c) = ($1 == k) ? column(c) : NaN
 lname(k) = k == 0 ? "square" : k == 1 ? "triangular" : "cubic (3D)"
 lrgb(k) = k == 0 ? 0xd62728 : k == 1 ? 0x2ca02c : 0x1f77b4
 lpt(k) = k == 0 ? 5 : k == 1 ? 9 : 7
-cont(k) = k < 2 ? 0.547069 : 0.38413
+load 'rsa_ref.gp'  # theta_disks, theta_spheres: rsa_jam.c writes them from datasets/reference/rsa.csv
+cont(k) = k < 2 ? theta_disks : theta_spheres
 
 set title "(a) coverage at jamming θ = N · (πR² or 4πR³/3) / volume"
 set logscale x 2
@@ -24,8 +25,8 @@ set label 3 "π/6" at 0.46, 0.524 right font "sans,9"
 set label 4 "every site\ntaken" at 0.27, 0.68 font "sans,9"
 set label 5 "2×2 squares" at 1.1, 0.6 font "sans,9"
 plot for [k = 0:2] 'rsa_jam.dat' u (sel(k, 3)):7:8 w yerrorlines lc rgb lrgb(k) pt lpt(k) ps 1 lw 1.5 t lname(k), \
-     0.547069 w l lc rgb "#444444" dt 2 lw 1.5 t "continuum disks 0.547069", \
-     0.38413 w l lc rgb "#444444" dt 4 lw 1.5 t "continuum spheres 0.38413"
+     theta_disks w l lc rgb "#444444" dt 2 lw 1.5 t sprintf("continuum disks %.6f", theta_disks), \
+     theta_spheres w l lc rgb "#444444" dt 4 lw 1.5 t sprintf("continuum spheres %.5f", theta_spheres)
 
 set title "(b) the approach to the continuum: θ_{eff} = θ × lattice shape size / continuum size"
 unset label

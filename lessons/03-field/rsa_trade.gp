@@ -9,7 +9,8 @@ sel(k, c) = ($1 == k) ? column(c) : NaN
 lname(k) = k == 0 ? "square" : k == 1 ? "triangular" : "cubic (3D)"
 lrgb(k) = k == 0 ? 0xd62728 : k == 1 ? 0x2ca02c : 0x1f77b4
 lpt(k) = k == 0 ? 5 : k == 1 ? 9 : 7
-cont(k) = k < 2 ? 0.547069 : 0.38413
+load 'rsa_ref.gp'  # theta_disks, theta_spheres: rsa_jam.c writes them from datasets/reference/rsa.csv
+cont(k) = k < 2 ? theta_disks : theta_spheres
 set logscale xy
 set yrange [3e-4:0.5]
 set ylabel "|θ − θ_{continuum}| at jamming"

@@ -1,6 +1,6 @@
 /* cell_order — lesson 04, experiment: where the bytes are. Linked lists against fixed
  * arrays, particles as placed against particles numbered cell by cell in row-major or
- * Morton order, inside and outside the caches (thesis 2.4.3; DynamO, seed 002).
+ * Morton order, inside and outside the caches (thesis 2.4.3; DynamO: Bannerman, Sargant & Lue, J. Comput. Chem. 32, 3329 (2011)).
  *
  * The system of table22 (hard disks R = 12, packing 0.474, boxes 1024 .. 32768, so
  * N = 1099 .. 1 125 000), walked by the cell-list driver CL (skin 7, re-binned every 3

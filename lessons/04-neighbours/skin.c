@@ -1,5 +1,5 @@
 /* skin — lesson 04, experiment: the trade. Skin Δr against refresh interval against
- * cost against missed interactions (DESIGN §7).
+ * cost against missed interactions: the stage's trade of cost against accuracy.
  *
  * 4400 hard disks (R = 12, σ = 24, packing 0.474, box 2048) random-walk on the square
  * lattice. A step moves a disk by 1, so the pairs that can decide a step are those

@@ -1,5 +1,5 @@
 /* cells — lesson 05, experiment: how many cells? The cost of event-driven hard spheres
- * against the number of cells per particle C/N (Miller & Luding, seed 000, fig. 3).
+ * against the number of cells per particle C/N (Miller & Luding, J. Comput. Phys. 193, 306 (2004), fig. 3).
  *
  * Few cells: each cell holds many particles, and every prediction (after every event)
  * tests the 3^dim·N/C particles of the block around a particle's cell. Many cells: a

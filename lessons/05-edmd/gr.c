@@ -6,7 +6,7 @@
  * Molecular dynamics and Monte Carlo sample the same equilibrium ensemble (every
  * non-overlapping configuration equally likely), so their g(r) must agree within the
  * noise — one by dynamics, the other by a random walk in configuration space. The
- * contact value g(σ+) sets the pressure, Z = 1 + 2η g(σ+) (reference §3), and it is
+ * contact value g(σ+) sets the pressure, Z = 1 + 2η g(σ+) (datasets/reference/collision-identity.csv), and it is
  * measured three ways here:
  *   - from the histogram, extrapolated to r = σ (lz_hdmc_contact: a line through ln g
  *     over [1, 1.1] σ), for both the MC and the MD run;
@@ -42,13 +42,13 @@
 #include "lz/hdmc.h"
 #include "lz/lesson.h"
 #include "lz/output.h"
+#include "lz/reference.h"
 #include "lz/rng.h"
 #include "lz/timer.h"
 
 #define SEED 5002u
 #define N 201            /* stage 02's reference: 201 disks at η = 0.4 */
 #define ETA 0.4
-#define ZREF_ERR 5e-4    /* reference README §2, η = 0.4 */
 #define NBLOCK 8
 #define PER_SIGMA 50     /* bins per σ: an edge at r = 1 exactly */
 #define RMAX 3
@@ -208,8 +208,13 @@ int main(int argc, char **argv)
 		return lz_lesson_error(&L);
 	}
 
-	double zref = lz_edmd_z_reference(2, ETA, NULL);
-	double g_ref = (zref - 1) / (2 * ETA), g_ref_err = ZREF_ERR / (2 * ETA);
+	lz_ref z;  /* datasets/reference/hard-disks.csv */
+	if (lz_reference_at("hard-disks.csv", "Z", "2", "eta", ETA, &z) != LZ_OK) {
+		gsl_histogram_free(h);
+		return lz_lesson_error(&L);
+	}
+	double zref = z.value;
+	double g_ref = (zref - 1) / (2 * ETA), g_ref_err = z.err / (2 * ETA);
 	double g_hend = (1 - 7 * ETA / 16) / ((1 - ETA) * (1 - ETA));
 	printf("  contact value g(σ+):\n");
 	printf("    MC, histogram        %.4f ± %.4f   (%.2f CPU s, overlaps %g)\n", mc.cm, mc.ce,

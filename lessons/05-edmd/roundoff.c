@@ -1,4 +1,4 @@
-/* roundoff — lesson 05, experiment: the absolute-time problem (DynamO, seed 002:
+/* roundoff — lesson 05, experiment: the absolute-time problem (DynamO, Bannerman, Sargant & Lue, J. Comput. Chem. 32, 3329 (2011):
  * "round-off error will accumulate in these stored absolute times").
  *
  * A double carries 53 bits: next to a time T0 the smallest step it can express is

@@ -1,6 +1,6 @@
 /* scaling — lesson 05, experiment: is an event O(1)? Events and collisions per CPU
  * second against N, with the particles numbered cell by cell or at random, and the
- * bytes per particle against the caches (DynamO, seed 002, its scaling figure).
+ * bytes per particle against the caches (DynamO, Bannerman, Sargant & Lue, J. Comput. Chem. 32, 3329 (2011), its scaling figure).
  *
  * An event costs a heap operation, O(log N) — a handful of levels more at each tenfold
  * N — plus a prediction over the block of cells, O(1) at fixed density. What actually

@@ -1,4 +1,4 @@
-/* trade — lesson 05, experiment: THE TRADE (DESIGN §7). Event-driven hard spheres,
+/* trade — lesson 05, experiment: THE TRADE of cost against accuracy. Event-driven hard spheres,
  * exact to round-off, against the obvious time-stepped simulation, which is wrong by
  * an amount that shrinks with the time step dt and costs more as it does.
  *
@@ -39,6 +39,7 @@
 #include "lz/edmd_obs.h"
 #include "lz/error.h"
 #include "lz/lesson.h"
+#include "lz/reference.h"
 #include "lz/output.h"
 #include "lz/rng.h"
 #include "lz/timer.h"
@@ -46,7 +47,6 @@
 #define SEED 5005u
 #define DIM 3
 #define ETA 0.3
-#define ZREF_ERR 5e-4   /* reference README §1, η = 0.3 */
 #define BLOCKS 10
 #define NSIGMA 3.0
 #define NDT 7
@@ -205,9 +205,12 @@ int main(int argc, char **argv)
 	if (lz_lesson_args(argc, argv, "05", &L) != LZ_OK)
 		return 2;
 	const sizes *sz = L.quick ? &quick : &full;
-	double zref = lz_edmd_z_reference(DIM, ETA, NULL);
+	lz_ref z;  /* datasets/reference/hard-spheres.csv */
+	if (lz_reference_at("hard-spheres.csv", "Z", "3", "eta", ETA, &z) != LZ_OK)
+		return lz_lesson_error(&L);
+	double zref = z.value, zref_err = z.err;
 	printf("trade: %zu hard spheres at η = %g, %g time units per run in %d blocks, seed "
-	       "%u; Z_ref = %.4f ± %g\n", sz->n, ETA, sz->time, BLOCKS, SEED, zref, ZREF_ERR);
+	       "%u; Z_ref = %.4f ± %g\n", sz->n, ETA, sz->time, BLOCKS, SEED, zref, zref_err);
 
 	lz_edmd_params p = {DIM, sz->n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
@@ -250,7 +253,7 @@ int main(int argc, char **argv)
 	size_t nfit = 0;
 	for (int k = 0; k < sz->ndt; k++) {
 		double err = fabs(ts[k].Z - zref);
-		if (err > NSIGMA * hypot(ts[k].Z_err, ZREF_ERR)) {
+		if (err > NSIGMA * hypot(ts[k].Z_err, zref_err)) {
 			lx[nfit] = log(ts[k].dt);
 			ly[nfit++] = log(err / zref);
 		}
@@ -292,7 +295,7 @@ int main(int argc, char **argv)
 	if (lz_data_close(d) != LZ_OK)
 		return lz_lesson_error(&L);
 
-	double ed_tol = NSIGMA * ed.Z_err + ZREF_ERR;
+	double ed_tol = NSIGMA * ed.Z_err + zref_err;
 	printf("  event-driven |Z - Z_ref| = %.4f within %.4f (3 error bars + the reference's) "
 	       "and max overlap %.2g < 1e-10 σ: %s\n", fabs(ed.Z - zref), ed_tol, ed.max_overlap,
 	       lz_lesson_check(&L, fabs(ed.Z - zref) <= ed_tol && ed.max_overlap < 1e-10));

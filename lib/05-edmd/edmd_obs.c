@@ -8,6 +8,7 @@
 
 #include "lz/edmd_obs.h"
 #include "lz/error.h"
+#include "lz/reference.h"
 #include "lz/timer.h"
 
 /* The guards of lz_edmd_blocks (header). */
@@ -177,12 +178,9 @@ int lz_edmd_blocks(lz_edmd *e, size_t blocks, uint64_t events, lz_edmd_result *r
 
 /* ---- the reference equation of state ---- */
 
-/* Reference §1 and §2: Z_ref at the tabulated packings. */
-static const double eta3[] = {0.10, 0.20, 0.30, 0.40, 0.45, 0.49};
-static const double z3[] = {1.52165, 2.40940, 3.9840, 6.947, 9.41, 12.19};
-static const double eta2[] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.65, 0.698};
-static const double z2[] = {1.23614, 1.57037, 2.06326, 2.8293, 4.106, 6.457, 8.45, 10.319};
-
+/* Z_ref at the tabulated packings: datasets/reference/hard-spheres.csv (3D) and
+ * hard-disks.csv (2D). */
+enum { Z_ROWS = 16 };
 static double z_cs(double x)
 {
 	return (1 + x + x * x - x * x * x) / pow(1 - x, 3);
@@ -200,8 +198,17 @@ double lz_edmd_z_closed(int dim, double packing)
 
 double lz_edmd_z_reference(int dim, double packing, const char **source)
 {
-	const double *eta = dim == 3 ? eta3 : eta2, *z = dim == 3 ? z3 : z2;
-	size_t n = dim == 3 ? sizeof eta3 / sizeof eta3[0] : sizeof eta2 / sizeof eta2[0];
+	double eta[Z_ROWS], z[Z_ROWS];
+	lz_ref ref[Z_ROWS];
+	size_t n = 0;
+	if (lz_reference_table(dim == 3 ? "hard-spheres.csv" : "hard-disks.csv", "Z",
+	                       dim == 3 ? "3" : "2", "eta", eta, ref, Z_ROWS, &n) != LZ_OK) {
+		if (source)
+			*source = "none: the reference table cannot be read";
+		return NAN;
+	}
+	for (size_t k = 0; k < n; k++)
+		z[k] = ref[k].value;
 	double (*closed)(double) = dim == 3 ? z_cs : z_henderson;
 	if (!(packing > 0) || packing > eta[n - 1]) {
 		if (source)

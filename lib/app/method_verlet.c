@@ -252,8 +252,8 @@ static void sim_free(sim *m)
 
 /* ---- observables ---- */
 
-/* The quantity the scheme conserves exactly on the harmonic oscillator (reference
- * README §5), with v and r taken at the same time: Verlet's v lags one step and
+/* The quantity the scheme conserves exactly on the harmonic oscillator
+ * (datasets/reference/harmonic.csv), with v and r taken at the same time: Verlet's v lags one step and
  * pairs with r_prev; leapfrog's kinetic energy is synchronised by lz_md_kinetic. */
 static double shadow_energy(const sim *m)
 {

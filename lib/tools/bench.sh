@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench.sh BUILD — the speed suite (make bench, DESIGN §8).
+# bench.sh BUILD — the speed suite (make bench; lib/README.md, "Benchmarks").
 #
 # Reads datasets/scenes/bench.list: one benchmark per line, `SCENE key=v1,v2,...
 # [key=value ...]`; keys with comma lists are swept, every combination runs REPEATS
@@ -84,7 +84,7 @@ expand() {
 results=$out/results.tsv  # stage, scene, params, then key=value figures
 : >"$results"
 failed=0
-# The table shows each method's headline speed (DESIGN §8): atom-steps, site updates or
+# The table shows each method's headline speed (lib/README.md, "Benchmarks"): atom-steps, site updates or
 # events per second when the method reports one, else steps per second.
 printf '%-14s %-46s %11s %-19s %13s %8s\n' scene parameters speed unit bytes wall_s
 lineno=0

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# mkassign.sh — generate the student stubs from the reference solutions (DESIGN §5).
+# mkassign.sh — generate the student stubs from the reference solutions (lib/README.md, "Assignments").
 #
 #   mkassign.sh SRC_ROOT DST_ROOT [--check]
 #

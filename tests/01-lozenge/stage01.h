@@ -110,7 +110,7 @@ static inline double osc_deviation(const lz_md *s, lz_integrator m, double omega
 	return worst;
 }
 
-/* The quantity scheme m conserves exactly on ẍ = -ω²x (reference §5), summed over
+/* The quantity scheme m conserves exactly on ẍ = -ω²x (datasets/reference/harmonic.csv), summed over
  * the coordinates, x and v taken at one time:
  *   Verlet family     v²/2 + ω²x²/2 (1 - Ω²/4)
  *   symplectic Euler  v²/2 + ω²x²/2 - (dt ω²/2) x v

@@ -6,7 +6,7 @@
 
 #include "stage01.h"
 
-/* ---- the stability limit ω·dt = 2 (reference §5) ----
+/* ---- the stability limit ω·dt = 2 (datasets/reference/harmonic.csv) ----
  *
  * One test per scheme and property, so that the points follow the function that is
  * right. Two coordinates start at x = 1 and x = -1/2 with v = 0 (ω = 1), so a step that

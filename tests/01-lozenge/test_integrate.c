@@ -1,5 +1,5 @@
 /* test_integrate.c — the five step functions against closed forms and the exact
- * invariants of the harmonic oscillator (reference README §5). */
+ * invariants of the harmonic oscillator (datasets/reference/harmonic.csv). */
 #include <math.h>
 #include <stdio.h>
 

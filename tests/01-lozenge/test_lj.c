@@ -98,7 +98,9 @@ END_TEST
 LZ_TEST(lj_pressure_matches_literature)
 {
 	enum { N = 108, MELT = 1000, RUN = 4000, BLOCKS = 10 };
-	const double dt = 0.005, T = 1.0, rho = 0.8, p_ref = 1.72, p_ref_err = 0.04;
+	const double dt = 0.005, T = 1.0, rho = 0.8;
+	lz_ref lit = lz_test_reference("lennard-jones.csv", "p truncated", "3", "T=1 rho=0.8 rc=2.5");
+	const double p_ref = lit.value, p_ref_err = lit.err;
 	lz_lj p;
 	lz_md *s = lj_fluid_new(&p, N, rho, T, 3);
 	ck_assert(lz_md_start(s, LZ_VELOCITY_VERLET, dt) == LZ_OK);

@@ -556,7 +556,7 @@ static double rsa_density(double R, int L, int runs, unsigned long seed)
 LZ_TEST(rsa_small_disks_are_known_lattice_problems)
 {
 	/* On the square lattice a small disk's excluded shape is a classic lattice RSA
-	 * problem with a known jamming density (shared/reference §4):
+	 * problem with a known jamming density (datasets/reference/rsa.csv):
 	 *   R = 0.7 (σ² = 1.96): the shape is the site and its 4 neighbours — RSA with
 	 *     nearest-neighbour exclusion, 0.3641323 particles per site (Gan & Wang);
 	 *   R = 1 (σ² = 4): the 3 x 3 block — RSA of 2 x 2 squares, which cover 0.74788
@@ -566,12 +566,16 @@ LZ_TEST(rsa_small_disks_are_known_lattice_problems)
 	 * falls short. The tolerance is 4 standard errors of the mean of 8 runs on 256²,
 	 * from the spread over 20 seeds (sd 0.0009 and 0.0006 per run). */
 	double near = rsa_density(0.7, 256, 8, 101), block = rsa_density(1.0, 256, 8, 201);
-	ck_assert_msg(fabs(near - 0.3641323) < 4 * 0.0009 / sqrt(8.0), "R = 0.7 on the square "
-	              "lattice is RSA with nearest-neighbour exclusion: jamming density "
-	              "0.3641323 per site, measured %.5f", near);
-	ck_assert_msg(fabs(block - 0.74788 / 4) < 4 * 0.0006 / sqrt(8.0), "R = 1 on the square "
-	              "lattice is RSA of 2 x 2 squares: jamming density 0.18697 per site, "
-	              "measured %.5f", block);
+	lz_ref nn = lz_test_reference("rsa.csv", "jamming coverage", "2",
+	                              "square lattice nearest-neighbour exclusion");
+	lz_ref squares = lz_test_reference("rsa.csv", "jamming coverage", "2",
+	                                   "square lattice 2x2 squares");
+	ck_assert_msg(fabs(near - nn.value) < 4 * 0.0009 / sqrt(8.0) + nn.err, "R = 0.7 on the "
+	              "square lattice is RSA with nearest-neighbour exclusion: jamming density "
+	              "%.7f per site, measured %.5f", nn.value, near);
+	ck_assert_msg(fabs(block - squares.value / 4) < 4 * 0.0006 / sqrt(8.0) + squares.err / 4,
+	              "R = 1 on the square lattice is RSA of 2 x 2 squares: jamming density %.5f "
+	              "per site, measured %.5f", squares.value / 4, block);
 }
 END_TEST
 

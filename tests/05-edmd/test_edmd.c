@@ -9,8 +9,9 @@
  * hand-computed collision times of two particles, a stale event skipped, energy and
  * momentum kept to round-off, no overlap at high density, free flight of one
  * particle, walls and gravity in closed form, the ideal-gas limit, and the pressure
- * of hard spheres at η = 0.3 against the reference equation of state (reference
- * README §1, §3) with block error bars. */
+ * of hard spheres at η = 0.3 against the reference equation of state
+ * (datasets/reference/hard-spheres.csv, collision-identity.csv) with block error
+ * bars. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -1394,7 +1395,7 @@ LZ_TEST(ideal_gas_limit_at_packing_1e_4)
 {
 	/* At η = 1e-4 the gas is ideal to 4e-4: Z - 1 = 4η g(σ) (3D), 2η g(σ) (2D), with
 	 * g(σ) = 1 + O(η), and the collision rate is Γ = 4√π n √T (3D), 2√π n √T (2D)
-	 * (reference §3). A mean free time is ~750 (3D) and ~2200 (2D) time units here;
+	 * (datasets/reference/collision-identity.csv). A mean free time is ~750 (3D) and ~2200 (2D) time units here;
 	 * the runs last 20 (3D) and 50 (2D) of them, about 10^4 and 2.4·10^4 collisions:
 	 * Z - 1 and Γ to about 1 %. The blocks are only 2 free times long, so their means are
 	 * correlated and the block error is low by up to a quarter (measured over 40
@@ -1422,13 +1423,14 @@ END_TEST
 
 LZ_TEST(pressure_at_packing_0_3_matches_the_reference)
 {
-	/* Hard spheres at η = 0.3: Z = 3.9840 ± 0.0005 (reference §1, from the virial
-	 * series). N = 4000 keeps the finite-size shift (~(Z-1)/N) well below the error
+	/* Hard spheres at η = 0.3: Z_ref = 3.9840 ± 0.0005 (datasets/reference/
+	 * hard-spheres.csv: the resummed virial series). N = 4000 keeps the finite-size shift (~(Z-1)/N) well below the error
 	 * bar. 20 blocks of 2·10^5 events (about 25 collisions per particle each). */
 	lz_edmd *e = lattice_system(3, 4000, 0.3, 1, LZ_EDMD_WALLS_NONE, 0, 551);
 	run(e, 150000, "equilibration at η = 0.3");
 	blocks_t m = measure(e, 20, 200000, 0);
-	double ref = 3.9840, ref_err = 0.0005, tol = 3 * m.Z_err + ref_err;
+	lz_ref z = lz_test_reference("hard-spheres.csv", "Z", "3", "eta=0.30");
+	double ref = z.value, ref_err = z.err, tol = 3 * m.Z_err + ref_err;
 	LZ_REQUIRE(m.Z_err < 0.01, "η = 0.3: the block error of Z is %.3g, far too large for 4·10^6 "
 	      "events — the pressure jumps from block to block", m.Z_err);
 	LZ_REQUIRE(fabs(m.Z - ref) <= tol,
@@ -1444,7 +1446,7 @@ END_TEST
 LZ_TEST(pressure_identity_with_the_collision_rate)
 {
 	/* For any hard-sphere fluid in equilibrium Z = 1 + √(π/T) Γ/6 (3D), exactly
-	 * (reference §3): the impulses on one side, a count of collisions on the other.
+	 * (datasets/reference/collision-identity.csv): the impulses on one side, a count of collisions on the other.
 	 * Checked on the block means of the difference, to 3 standard errors, with the
 	 * factor √(n/(n-1)) of a fixed total momentum (see measure). */
 	lz_edmd *e = lattice_system(3, 2048, 0.4, 1, LZ_EDMD_WALLS_NONE, 0, 561);
@@ -1456,7 +1458,7 @@ LZ_TEST(pressure_identity_with_the_collision_rate)
 	      "errors — %s", m.Z, m.Z_err, m.gamma, m.Zg, m.Zg_err, m.diff, m.diff_err,
 	      m.diff > 0 ? "too much impulse per collision (the bounce) or collisions not counted"
 	                 : "too little impulse per collision, or phantom collisions counted");
-	LZ_REQUIRE(m.Z > 6.0 && m.Z < 7.9, "η = 0.4: Z = %.4f, hard spheres have 6.947 (reference §1)",
+	LZ_REQUIRE(m.Z > 6.0 && m.Z < 7.9, "η = 0.4: Z = %.4f, hard spheres have 6.947 (datasets/reference/hard-spheres.csv)",
 	      m.Z);
 	lz_edmd_free(e);
 }

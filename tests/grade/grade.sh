@@ -390,7 +390,7 @@ link_stage() {  # link_stage SCRATCH STAGE LOG
 # Run the stage's tests in machine mode under timeout and ulimit, from the scratch
 # root, with the environment reset (CK_FORK=yes). The runner's stdout and stderr go
 # to CAPTURE; the tests' own output to a log in the scratch tree, which is never
-# read. The exit status goes to STATUS.
+# read; the literature tables are the scratch tree's. The exit status goes to STATUS.
 run_stage() {  # run_stage SCRATCH STAGE BUDGET CAPTURE STATUS
 	local scratch=$1 st=$2 budget=$3 args=() r status=0
 	for r in $(rubrics_of "$st"); do
@@ -403,6 +403,7 @@ run_stage() {  # run_stage SCRATCH STAGE BUDGET CAPTURE STATUS
 		ulimit -v "$ULIMIT_V" || true
 		ulimit -t $((budget + 10)) || true
 		exec env -i PATH="$PATH" HOME="${HOME:-/tmp}" LC_ALL=C CK_FORK=yes \
+			LZ_REFERENCE_DIR="$scratch/datasets/reference" \
 			timeout -k 5 "$budget" "build/grade/tests/$st.graded" "${args[@]}" \
 			--machine --log "build/grade/$st-output.log"
 	) >"$4" 2>&1 </dev/null || status=$?

@@ -50,6 +50,7 @@
 #include <gsl/gsl_rng.h>
 
 #include "lz/error.h"
+#include "lz/reference.h"
 
 void lz_test_register(const char *name, const TTest *test);
 
@@ -85,6 +86,11 @@ gsl_rng *lz_test_rng(unsigned long seed);
  * bad input read the message with lz_error_message(). */
 int lz_test_last_error(void);
 void lz_test_clear_error(void);
+
+/* The literature value of datasets/reference/FILE (lz/reference.h) that the test
+ * compares with; the test fails, saying which, when the table has no such row. */
+lz_ref lz_test_reference(const char *file, const char *quantity, const char *dim,
+                         const char *state);
 
 /* Fail unless a call was refused: `failed` (e.g. got == NULL, or status != LZ_OK)
  * with the code LZ_EINVAL and a message that says `says` (and `also`, unless NULL).

@@ -1,4 +1,4 @@
-/* report.c — lz-report, the autograder's report writer (DESIGN §6).
+/* report.c — lz-report, the autograder's report writer (README.md, "How an instructor grades").
  *
  * It links no student code and no library: it reads what the grader captured and
  * writes the reports. grade.sh runs it after every process of the submission is

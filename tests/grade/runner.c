@@ -86,6 +86,15 @@ gsl_rng *lz_test_rng(unsigned long seed)
 	return r;
 }
 
+lz_ref lz_test_reference(const char *file, const char *quantity, const char *dim,
+                         const char *state)
+{
+	lz_ref r = {0, 0};
+	ck_assert_msg(lz_reference(file, quantity, dim, state, &r) == LZ_OK,
+	              "the literature value is missing: %s", lz_error_message());
+	return r;
+}
+
 static int last_error;
 
 int lz_test_last_error(void) { return last_error; }

@@ -69,7 +69,7 @@ static lzt_json *run_edmd(const char *assignments, const char **dir)
 /* ---- blocks, measure, guards ---- */
 
 /* Hard spheres at η = 0.3: the virial Z and Z from the collision rate agree (the exact
- * identity of reference §3) and both meet Z_ref = 3.984; the counters add up, the
+ * identity of datasets/reference/collision-identity.csv) and both meet Z_ref = 3.984; the counters add up, the
  * guards stay quiet, kT stays 1. */
 LZ_TEST(edmd_blocks_pressure_and_identity)
 {
@@ -84,10 +84,13 @@ LZ_TEST(edmd_blocks_pressure_and_identity)
 	              "Z = %g ± %g but the collision rate Z = %g ± %g: the identity Z = 1 + "
 	              "√(π/kT) Γ / 6 is exact in equilibrium", r.Z, r.Z_err, r.Z_gamma,
 	              r.Z_gamma_err);
-	ck_assert_msg(fabs(r.Z - 3.984) < 5 * r.Z_err + 0.03, "Z = %g ± %g at η = 0.3; the "
-	              "reference is 3.984", r.Z, r.Z_err);
-	ck_assert_msg(fabs(r.gamma - 10.101) < 5 * r.gamma_err + 0.1, "Γ = %g, reference 10.1",
-	              r.gamma);
+	/* the reference Z, and the collision rate it implies by the identity */
+	lz_ref zref = lz_test_reference("hard-spheres.csv", "Z", "3", "eta=0.30");
+	double gamma_ref = (zref.value - 1) * 6 / sqrt(M_PI);
+	ck_assert_msg(fabs(r.Z - zref.value) < 5 * r.Z_err + 0.03, "Z = %g ± %g at η = 0.3; the "
+	              "reference is %g", r.Z, r.Z_err, zref.value);
+	ck_assert_msg(fabs(r.gamma - gamma_ref) < 5 * r.gamma_err + 0.1, "Γ = %g, the reference "
+	              "%.4g (from Z_ref by the identity)", r.gamma, gamma_ref);
 	ck_assert(fabs(r.free_time * r.gamma - 1) < 1e-12);
 	ck_assert_msg(fabs(r.T - 1) < 1e-10 && r.energy_rel_drift < 1e-10 &&
 	              r.max_overlap < 1e-10 && r.momentum_abs_drift < 1e-9, "guards: T = %.15g, "
@@ -190,10 +193,13 @@ END_TEST
 LZ_TEST(edmd_z_reference)
 {
 	const char *src;
-	ck_assert(fabs(lz_edmd_z_reference(3, 0.3, &src) - 3.984) < 1e-12 && !strcmp(src, "table"));
-	ck_assert(fabs(lz_edmd_z_reference(2, 0.698, &src) - 10.319) < 1e-12);
+	double z3 = lz_test_reference("hard-spheres.csv", "Z", "3", "eta=0.30").value;
+	double z4 = lz_test_reference("hard-spheres.csv", "Z", "3", "eta=0.40").value;
+	double z2 = lz_test_reference("hard-disks.csv", "Z", "2", "eta=0.698").value;
+	ck_assert(fabs(lz_edmd_z_reference(3, 0.3, &src) - z3) < 1e-12 && !strcmp(src, "table"));
+	ck_assert(fabs(lz_edmd_z_reference(2, 0.698, &src) - z2) < 1e-12);
 	double z = lz_edmd_z_reference(3, 0.35, &src);
-	ck_assert_msg(z > 3.984 && z < 6.947 && fabs(z / 5.1888 - 1) < 0.01, "Z(0.35) = %g "
+	ck_assert_msg(z > z3 && z < z4 && fabs(z / 5.1888 - 1) < 0.01, "Z(0.35) = %g "
 	              "should lie near Carnahan-Starling's 5.189", z);
 	ck_assert(fabs(lz_edmd_z_reference(3, 1e-6, NULL) - 1) < 1e-5);
 	z = lz_edmd_z_reference(3, 0.6, &src);

@@ -1,7 +1,7 @@
 /* lz/cells.h — cell lists: binning by bit shift and by scaling, linked lists and
  * fixed-capacity arrays, the block of neighbouring cells with periodic wrap, the half
  * block for pair loops, and the Morton (Z-order) numbering of cells (thesis 2.4.3;
- * DynamO's Morton-ordered cells, seed 002).
+ * DynamO's Morton-ordered cells: Bannerman, Sargant & Lue, J. Comput. Chem. 32, 3329 (2011)).
  *
  * Lengths are in the units of the coordinates: lattice units for lattice sites, any
  * unit (σ off the lattice) for continuous points.

@@ -1,6 +1,6 @@
 /* lz/edmd.h — event-driven molecular dynamics of hard spheres (3D) and hard disks
  * (2D): particles fly straight between collisions, so the simulation jumps from one
- * collision to the next, exactly (Miller & Luding, seed 000; DynamO, seed 002).
+ * collision to the next, exactly (Miller & Luding, J. Comput. Phys. 193, 306 (2004); DynamO: Bannerman, Sargant & Lue, J. Comput. Chem. 32, 3329 (2011)).
  *
  * Units: the diameter σ = 1, the mass m = 1, and time in σ√(m/kT) (kT = 1 at the
  * start). Positions in [0, L) on every axis of a box of side L, periodic unless the

@@ -93,12 +93,13 @@ typedef struct {
 int lz_edmd_blocks_plan(lz_edmd *e, size_t blocks, const lz_edmd_plan *plan,
                         lz_edmd_result *r);
 
-/* The reference Z(η) of the hard-sphere (dim 3) or hard-disk (dim 2) fluid: the
- * Padé-resummed virial series (and in 2D the simulated η = 0.698) of the course
- * reference (§1-2), interpolated through Z/Z_CS (Z/Z_Henderson) between the tabulated
- * packings, 1 at η = 0; beyond the table, Carnahan-Starling (Henderson), which is no
- * longer the stable phase there. *source (may be NULL) names which: "table" or
- * "carnahan-starling" / "henderson". O(1). */
+/* The reference Z(η) of the hard-sphere (dim 3) or hard-disk (dim 2) fluid: the table
+ * of datasets/reference/hard-spheres.csv (hard-disks.csv) — the Padé-resummed virial
+ * series, and in 2D the simulated η = 0.698 — interpolated through Z/Z_CS
+ * (Z/Z_Henderson) between the tabulated packings, 1 at η = 0; beyond the table,
+ * Carnahan-Starling (Henderson), which is no longer the stable phase there. *source
+ * (may be NULL) names which: "table" or "carnahan-starling" / "henderson". NAN, with
+ * an lz_error, when the table cannot be read. O(rows of the table). */
 double lz_edmd_z_reference(int dim, double packing, const char **source);
 
 /* The closed forms beside it: Carnahan-Starling (dim 3), (1 + η + η² - η³)/(1 - η)³,
