@@ -257,6 +257,7 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p)
 	e->g = p->gravity;
 	e->sort_every = 0;  /* lesson 05 §9: no gain measured once the loop prefetches */
 	e->prefetch = p->n >= LZ_EDMD_FAR;
+	e->rebase_auto = 1;
 	for (int a = 0; a < 3; a++) {
 		e->wall[a] = a < p->dim && (p->walls == LZ_EDMD_WALLS_BOX ||
 		                            (a == 0 && p->walls == LZ_EDMD_WALLS_X));

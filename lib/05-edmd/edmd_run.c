@@ -140,7 +140,9 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 			int st = check_stall(e, window);
 			if (st)
 				return st;
-			lz_edmd_rebase(e);
+			if (e->rebase_auto)
+				lz_edmd_rebase(e);
+			e->since_rebase = 0;
 			e->coll_mark = e->collisions;
 			if (e->sort_every && e->rebases % e->sort_every == 0 && (st = lz_edmd_sort(e)))
 				return st;

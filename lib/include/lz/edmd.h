@@ -139,6 +139,10 @@ typedef struct {
 	                           re-bases (lz_edmd_sort); 0: never. Default 0: no gain
 	                           once the loop prefetches (lesson 05 §9) */
 	unsigned rebases;       /* re-bases so far */
+	int rebase_auto;        /* 1 (the default): lz_edmd_run re-bases every max(n, 1024)
+	                           events; 0: only when asked (lz_edmd_rebase) — for a run
+	                           that must re-base at given absolute times, as the serial
+	                           reference of the parallel engine (lz/pedmd.h) does */
 	int prefetch;           /* 1: the arrays outgrow the caches (n >= LZ_EDMD_FAR), so
 	                           the loop asks for the memory it will read next ahead of
 	                           time; 0: it would only cost instructions. Set by
@@ -167,6 +171,19 @@ static inline void lz_edmd_state(const lz_edmd *e, const lz_edmd_particle *p, do
 	}
 	r[0] -= 0.5 * e->g * dt * dt;
 	v[0] -= e->g * dt;
+}
+
+/* dr = r_b - r_a at the nearest image on the periodic axes (a and b at the same
+ * time): the separation a collision bounces along. Swapping a and b negates it
+ * exactly. O(1). */
+static inline void lz_edmd_separation(const lz_edmd *e, const lz_edmd_particle *a,
+                                      const lz_edmd_particle *b, double dr[3])
+{
+	for (int x = 0; x < 3; x++) {
+		dr[x] = b->r[x] - a->r[x];
+		if (!e->wall[x] && x < e->dim)
+			dr[x] -= e->L * rint(dr[x] / e->L);
+	}
 }
 
 /* Bring p up to time t: r, v and t0 = t. O(1). */
@@ -304,7 +321,8 @@ void lz_edmd_start(lz_edmd *e);
 
 /* Run events until `events` more have been carried out or the absolute time reaches
  * t_stop (INFINITY: no limit); at t_stop every particle is brought to t_stop. Re-bases
- * every max(n, 1024) events and renumbers the particles cell by cell at each re-base.
+ * every max(n, 1024) events (unless rebase_auto is 0) and renumbers the particles cell
+ * by cell at each re-base when sort_every asks.
  * LZ_EINVAL when t_stop is before the clock (time does not run backwards).
  * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: max(n, 1024) events,
  * most of them collisions, in less than 1e-12 of the time a particle at the current

@@ -1,0 +1,754 @@
+/* pedmd_lib.c — the library half of lz/pedmd.h: the curve and its cuts, a rank's set-up,
+ * its predictions and announcements, the queue of waiting messages, and the window
+ * protocol of lz_pedmd_work (run, cut, decide). The rank's step, the application of a
+ * message, state saving and the decisions are graded (solutions/06-parallel/pedmd.c).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lz/bits.h"
+#include "lz/error.h"
+#include "lz/pedmd.h"
+
+/* Room for entries 0 .. n of `size` bytes in *v (capacity *cap), doubling. */
+int lz_pedmd_grow(void **v, size_t *cap, size_t n, size_t size)
+{
+	if (n < *cap)
+		return LZ_OK;
+	size_t c = *cap ? 2 * *cap : 256;
+	while (c <= n)
+		c *= 2;
+	void *w = realloc(*v, c * size);
+	if (!w)
+		return lz_error(LZ_ENOMEM, "no memory for %zu entries of %zu bytes", c, size);
+	*v = w;
+	*cap = c;
+	return LZ_OK;
+}
+
+/* ---- the curve ---- */
+
+static int by_code(const void *a, const void *b)
+{
+	const uint64_t *x = a, *y = b;
+	return (x[0] > y[0]) - (x[0] < y[0]);
+}
+
+lz_pedmd_domains *lz_pedmd_domains_alloc(const lz_edmd *e, int P, int kind)
+{
+	if (kind != LZ_PEDMD_ROWS && kind != LZ_PEDMD_MORTON)
+		return lz_error(LZ_EINVAL, "decomposition %d: rows (%d) or morton (%d)", kind,
+		                LZ_PEDMD_ROWS, LZ_PEDMD_MORTON), NULL;
+	if (P < 1 || P > LZ_PEDMD_RANKS_MAX || (size_t)P > e->ncells)
+		return lz_error(LZ_EINVAL, "ranks = %d: 1 <= ranks <= %d and at most the %zu cells",
+		                P, LZ_PEDMD_RANKS_MAX, e->ncells), NULL;
+	lz_pedmd_domains *d = calloc(1, sizeof *d);
+	uint64_t *code = malloc(2 * e->ncells * sizeof *code);
+	if (d) {
+		d->curve = malloc(e->ncells * sizeof *d->curve);
+		d->place = malloc(e->ncells * sizeof *d->place);
+	}
+	if (!d || !code || !d->curve || !d->place) {
+		free(code);
+		lz_pedmd_domains_free(d);
+		return lz_error(LZ_ENOMEM, "no memory for the curve of %zu cells", e->ncells), NULL;
+	}
+	d->P = P;
+	d->kind = kind;
+	d->ncells = e->ncells;
+	uint32_t mx = (uint32_t)e->m[0], my = (uint32_t)e->m[1];
+	for (uint32_t c = 0; c < e->ncells; c++) {
+		uint32_t x = c % mx, y = c / mx % my, z = c / (mx * my);
+		/* rows: the cell number itself (x fastest), so the cuts make slabs */
+		code[2 * c] = kind == LZ_PEDMD_ROWS ? c
+		              : e->dim == 3 ? lz_morton3_encode(x, y, z) : lz_morton2_encode(x, y);
+		code[2 * c + 1] = c;
+	}
+	qsort(code, e->ncells, 2 * sizeof *code, by_code);
+	for (size_t k = 0; k < e->ncells; k++) {
+		d->curve[k] = (uint32_t)code[2 * k + 1];
+		d->place[d->curve[k]] = (uint32_t)k;
+	}
+	free(code);
+	for (int r = 0; r <= P; r++)
+		d->cut[r] = (uint32_t)((double)e->ncells * r / P);
+	return d;
+}
+
+void lz_pedmd_domains_free(lz_pedmd_domains *d)
+{
+	if (!d)
+		return;
+	free(d->curve);
+	free(d->place);
+	free(d);
+}
+
+/* ---- a rank: set-up ---- */
+
+static int check_params(const lz_pedmd_params *p)
+{
+	if (!(p->window > 0) || !isfinite(p->window))
+		return lz_error(LZ_EINVAL, "window = %g: a window is a positive, finite time",
+		                p->window);
+	if (!(p->rebase > 0) || !isfinite(p->rebase))
+		return lz_error(LZ_EINVAL, "rebase = %g: a positive, finite time", p->rebase);
+	if (p->balance < 0 || !(p->threshold >= 0 && p->threshold < 1))
+		return lz_error(LZ_EINVAL, "balance = %d (>= 0), threshold = %g (in [0, 1))",
+		                p->balance, p->threshold);
+	if (p->work < 1)
+		return lz_error(LZ_EINVAL, "work = %d events a turn: at least 1", p->work);
+	return LZ_OK;
+}
+
+/* A system like s, with s's particles, cells in s's list order, and no heap yet. */
+static lz_edmd *copy_system(const lz_edmd *s)
+{
+	lz_edmd_params q = {s->dim, s->n, 0, s->restitution, s->g,
+	                    s->wall[0] ? (s->wall[1] ? LZ_EDMD_WALLS_BOX : LZ_EDMD_WALLS_X)
+	                               : LZ_EDMD_WALLS_NONE, s->m[0]};
+	double v1 = s->dim == 3 ? M_PI / 6 : M_PI / 4;
+	q.packing = (double)s->n * v1 / pow(s->L, s->dim);
+	lz_edmd *e = lz_edmd_alloc(&q);
+	if (!e)
+		return NULL;
+	if (e->ncells != s->ncells) {
+		lz_edmd_free(e);
+		return lz_error(LZ_EDOM, "the copy of the system has %zu cells, the original %zu",
+		                e->ncells, s->ncells), NULL;
+	}
+	e->L = s->L;  /* the packing's round trip may round L: take the original's bits */
+	for (int a = 0; a < 3; a++)
+		e->w[a] = s->w[a];
+	memcpy(e->p, s->p, s->n * sizeof *e->p);
+	memcpy(e->ev, s->ev, s->n * sizeof *e->ev);
+	e->now = s->now;
+	e->t_base = s->t_base;
+	e->rebase_auto = 0;
+	lz_edmd_reset_counts(e);
+	return e;
+}
+
+/* Put the present particles into their cells in s's list order. */
+static void fill_cells(lz_pedmd *r, const lz_edmd *s)
+{
+	lz_edmd *e = r->e;
+	lz_edmd_cell_clear(e);
+	int32_t *row = (int32_t *)r->scratch;  /* a cell's list, reversed */
+	for (uint32_t c = 0; c < s->ncells; c++) {
+		size_t k = 0;
+		for (int32_t j = s->list[c].head; j >= 0; j = s->next[j])
+			row[k++] = j;
+		while (k-- > 0)
+			if (r->role[row[k]] != LZ_PEDMD_ABSENT)
+				lz_edmd_cell_insert(e, (uint32_t)row[k], c);
+	}
+}
+
+static void mark_near(lz_pedmd *r)
+{
+	const lz_edmd *e = r->e;
+	lz_edmd_block b;
+	for (uint32_t c = 0; c < e->ncells; c++) {
+		lz_edmd_block_of(e, c, &b);
+		r->near[c] = 0;
+		for (int z = 0; z < b.n[2]; z++)
+			for (int y = 0; y < b.n[1]; y++)
+				for (int x = 0; x < b.n[0]; x++) {
+					uint8_t k = r->cls[b.off[0][x] + b.off[1][y] + b.off[2][z]];
+					r->near[c] |= k == LZ_PEDMD_HALO || k == LZ_PEDMD_BORDER;
+				}
+	}
+}
+
+lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
+                         const lz_pedmd_params *p)
+{
+	if (check_params(p))
+		return NULL;
+	if (d->ncells != s->ncells || d->P != lz_msg_size(msg))
+		return lz_error(LZ_EINVAL, "the decomposition has %zu cells for %d ranks, the system "
+		                "%zu cells and the messages %d ranks", d->ncells, d->P, s->ncells,
+		                lz_msg_size(msg)), NULL;
+	lz_pedmd *r = calloc(1, sizeof *r);
+	if (!r)
+		return lz_error(LZ_ENOMEM, "no memory for a rank"), NULL;
+	r->d = d;
+	r->msg = msg;
+	r->p = *p;
+	r->rank = lz_msg_rank(msg);
+	size_t n = s->n, nc = s->ncells;
+	r->e = copy_system(s);
+	r->cls = malloc(nc);
+	r->near = malloc(nc);
+	r->read = malloc(nc * sizeof *r->read);
+	r->load = calloc(nc, sizeof *r->load);
+	r->role = calloc(n, 1);
+	r->own = malloc(n * sizeof *r->own);
+	r->ghost = malloc(n * sizeof *r->ghost);
+	r->heard = malloc(n * sizeof *r->heard);
+	r->mark = calloc(n, sizeof *r->mark);
+	r->scratch = malloc((n > nc ? n : nc) * sizeof *r->scratch);
+	if (!r->e || !r->cls || !r->near || !r->read || !r->load || !r->role || !r->own ||
+	    !r->ghost || !r->heard || !r->mark || !r->scratch) {
+		lz_pedmd_free(r);
+		return lz_error(LZ_ENOMEM, "no memory for a rank of %zu particles", n), NULL;
+	}
+	lz_pedmd_classify(r->e, d, r->rank, r->cls);
+	mark_near(r);
+	for (size_t c = 0; c < nc; c++)
+		r->read[c] = -INFINITY;
+	lz_edmd *e = r->e;
+	for (uint32_t i = 0; i < n; i++) {
+		uint8_t k = r->cls[e->p[i].cell];
+		lz_pedmd_event ev = {lz_heap_key(s->heap, i), s->ev[i]};
+		r->role[i] = k == LZ_PEDMD_HALO ? LZ_PEDMD_GHOST
+		             : k == LZ_PEDMD_FAR ? LZ_PEDMD_ABSENT : LZ_PEDMD_OWNED;
+		r->own[i] = ev;
+		r->ghost[i] = ev;
+		r->heard[i] = -INFINITY;
+	}
+	fill_cells(r, s);
+	for (uint32_t i = 0; i < n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED)
+			lz_heap_push(e->heap, i, r->own[i].t);
+	r->clock = e->now;
+	for (uint32_t i = 0; i < n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED && r->cls[e->p[i].cell] == LZ_PEDMD_BORDER)
+			lz_pedmd_retarget(r, i);
+	r->T = e->t_base + e->now;
+	r->width = p->window;
+	r->forced_end = NAN;
+	r->t_error = INFINITY;
+	return r;
+}
+
+void lz_pedmd_free(lz_pedmd *r)
+{
+	if (!r)
+		return;
+	lz_edmd_free(r->e);
+	free(r->cls);
+	free(r->near);
+	free(r->read);
+	free(r->load);
+	free(r->role);
+	free(r->own);
+	free(r->ghost);
+	free(r->heard);
+	free(r->mark);
+	free(r->scratch);
+	free(r->wait);
+	free(r->wait0);
+	free(r->saved);
+	free(r->wlog);
+	free(r->clog);
+	free(r);
+}
+
+const lz_edmd *lz_pedmd_system(const lz_pedmd *r) { return r->e; }
+lz_pedmd_counts lz_pedmd_counters(const lz_pedmd *r) { return r->counts; }
+int lz_pedmd_role(const lz_pedmd *r, uint32_t i) { return r->role[i]; }
+
+const lz_pedmd_record *lz_pedmd_log(const lz_pedmd *r, size_t *n)
+{
+	*n = r->nclog;
+	return r->clog;
+}
+
+/* ---- predictions and ghosts' events ---- */
+
+/* Every cell of c's block, with f called on it. */
+#define FOR_BLOCK(e, c, b, q)                                                       \
+	lz_edmd_block_of((e), (c), &(b));                                           \
+	for (int z_ = 0; z_ < (b).n[2]; z_++)                                       \
+		for (int y_ = 0; y_ < (b).n[1]; y_++)                               \
+			for (int x_ = 0, q = 0; x_ < (b).n[0] &&                    \
+			     ((q = (int)((b).off[0][x_] + (b).off[1][y_] + (b).off[2][z_])), 1); \
+			     x_++)
+
+/* The earliest valid ghost event aimed at owned particle i, if earlier than t:
+ * *from gets the ghost. */
+static double ghost_aim(const lz_pedmd *r, uint32_t i, double t, int32_t *from)
+{
+	const lz_edmd *e = r->e;
+	lz_edmd_block b;
+	*from = -1;
+	FOR_BLOCK(e, e->p[i].cell, b, c) {
+		if (r->cls[c] != LZ_PEDMD_HALO)
+			continue;
+		for (int32_t j = e->list[c].head; j >= 0; j = e->next[j]) {
+			const lz_pedmd_event *g = &r->ghost[j];
+			if (g->ev.partner == (int32_t)i && g->ev.pcount == e->p[i].count && g->t < t) {
+				t = g->t;
+				*from = j;
+			}
+		}
+	}
+	return t;
+}
+
+/* Key owned i by the earlier of own[i] and the ghosts' aims. */
+static double set_key(lz_pedmd *r, uint32_t i)
+{
+	lz_edmd *e = r->e;
+	int32_t j;
+	double t = r->own[i].t;
+	e->ev[i] = r->own[i].ev;
+	if (r->near[e->p[i].cell]) {
+		t = ghost_aim(r, i, t, &j);
+		if (j >= 0)
+			e->ev[i] = (lz_edmd_event){j, e->p[j].count};
+	}
+	if (lz_heap_contains(e->heap, i))
+		lz_heap_update(e->heap, i, t);
+	else
+		lz_heap_push(e->heap, i, t);
+	return t;
+}
+
+int lz_pedmd_predict(lz_pedmd *r, uint32_t i)
+{
+	lz_edmd *e = r->e;
+	int st = lz_pedmd_save(r, i);
+	if (st != LZ_OK)
+		return st;
+	lz_edmd_predict(e, i);
+	r->own[i] = (lz_pedmd_event){lz_heap_key(e->heap, i), e->ev[i]};
+	uint32_t cell = e->p[i].cell;
+	if (!r->near[cell])
+		return LZ_OK;
+	lz_edmd_block b;
+	FOR_BLOCK(e, cell, b, c)
+		if ((r->cls[c] == LZ_PEDMD_HALO || r->cls[c] == LZ_PEDMD_BORDER) && r->read[c] < e->now)
+			r->read[c] = e->now;
+	double t = set_key(r, i);
+	return t < r->clock ? lz_pedmd_late(r, t) : LZ_OK;
+}
+
+int lz_pedmd_retarget(lz_pedmd *r, uint32_t i)
+{
+	int st = lz_pedmd_save(r, i);
+	if (st != LZ_OK)
+		return st;
+	double t = set_key(r, i);
+	return t < r->clock ? lz_pedmd_late(r, t) : LZ_OK;
+}
+
+int lz_pedmd_late(lz_pedmd *r, double t)
+{
+	if (t < r->t_error)
+		r->t_error = t;
+	return LZ_OK;
+}
+
+int lz_pedmd_block_at(const lz_pedmd *r, uint32_t cell, double t)
+{
+	const lz_edmd *e = r->e;
+	lz_edmd_block b;
+	FOR_BLOCK(e, cell, b, c)
+		for (int32_t j = e->list[c].head; j >= 0; j = e->next[j])
+			if (e->p[j].t0 > t)
+				return 0;
+	return 1;
+}
+
+/* ---- messages out ---- */
+
+static int send_one(lz_pedmd *r, int to, uint32_t kind, uint32_t i, double t)
+{
+	lz_pedmd_message m = {t, i, kind, r->e->p[i], r->own[i]};
+	if (kind == LZ_PEDMD_MIGRATE)
+		m.event = (lz_pedmd_event){INFINITY, {LZ_EDMD_NONE, 0}};
+	r->woke = 1;
+	return lz_msg_send(r->msg, to, &m, sizeof m);
+}
+
+static int member(const int *set, int n, int x)
+{
+	for (int k = 0; k < n; k++)
+		if (set[k] == x)
+			return 1;
+	return 0;
+}
+
+int lz_pedmd_announce(lz_pedmd *r, uint32_t i, uint32_t from, int to_owner, double t)
+{
+	int now[27], before[27], nn, nb = 0, st = LZ_OK;
+	uint32_t cell = r->e->p[i].cell;
+	if (to_owner < 0 && r->cls[cell] == LZ_PEDMD_INTERIOR && r->cls[from] == LZ_PEDMD_INTERIOR)
+		return LZ_OK;  /* nobody else sees either cell */
+	nn = lz_pedmd_listeners(r->e, r->d, r->rank, cell, now);
+	if (from != cell)
+		nb = lz_pedmd_listeners(r->e, r->d, r->rank, from, before);
+	if (to_owner >= 0)  /* the new owner tells the new cell's listeners */
+		st = send_one(r, to_owner, LZ_PEDMD_MIGRATE, i, t);
+	for (int k = 0; k < nn && st == LZ_OK && to_owner < 0; k++)
+		st = send_one(r, now[k], LZ_PEDMD_STATE, i, t);
+	for (int k = 0; k < nb && st == LZ_OK; k++)
+		if (!member(now, nn, before[k]))
+			st = send_one(r, before[k], LZ_PEDMD_LEAVE, i, t);
+	return st;
+}
+
+/* ---- the log ---- */
+
+
+void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
+                   double virial)
+{
+	r->wcommit++;
+	r->wvirial += virial;
+	if (!r->p.log || lz_pedmd_grow((void **)&r->wlog, &r->capwlog, r->nwlog, sizeof *r->wlog))
+		return;
+	r->wlog[r->nwlog++] = (lz_pedmd_record){r->e->t_base + t, i < j ? i : j, i < j ? j : i,
+	                                        kind};
+}
+
+/* ---- the messages that wait ---- */
+
+static int wait_before(const lz_pedmd_message *a, const lz_pedmd_message *b)
+{
+	return a->t < b->t || (a->t == b->t && a->id < b->id);
+}
+
+int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m)
+{
+	if (lz_pedmd_grow((void **)&r->wait, &r->capwait, r->nwait, sizeof *r->wait))
+		return LZ_ENOMEM;
+	size_t k = r->nwait++;
+	while (k > 0 && wait_before(m, &r->wait[(k - 1) / 2])) {
+		r->wait[k] = r->wait[(k - 1) / 2];
+		k = (k - 1) / 2;
+	}
+	r->wait[k] = *m;
+	return LZ_OK;
+}
+
+static lz_pedmd_message wait_pop(lz_pedmd *r)
+{
+	lz_pedmd_message top = r->wait[0], last = r->wait[--r->nwait];
+	size_t k = 0;
+	for (;;) {
+		size_t c = 2 * k + 1;
+		if (c >= r->nwait)
+			break;
+		if (c + 1 < r->nwait && wait_before(&r->wait[c + 1], &r->wait[c]))
+			c++;
+		if (!wait_before(&r->wait[c], &last))
+			break;
+		r->wait[k] = r->wait[c];
+		k = c;
+	}
+	if (r->nwait > 0)
+		r->wait[k] = last;
+	return top;
+}
+
+/* ---- restore ---- */
+
+void lz_pedmd_rebuild(lz_pedmd *r, const double *key)
+{
+	lz_edmd *e = r->e;
+	lz_edmd_cell_clear(e);
+	for (size_t i = e->n; i-- > 0;)
+		if (r->role[i] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, (uint32_t)i, e->p[i].cell);
+	lz_heap_clear(e->heap);
+	for (uint32_t i = 0; i < e->n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED)
+			lz_heap_push(e->heap, i, key[i]);
+	for (size_t c = 0; c < e->ncells; c++)
+		if (r->read[c] > r->e->now)
+			r->read[c] = r->e->now;
+}
+
+/* ---- the window protocol ---- */
+
+enum { BEGIN, RUN, DECIDE, DONE };
+
+/* The earliest time anything happens next on this rank (absolute). */
+static double next_time(const lz_pedmd *r)
+{
+	double t = r->e->heap->n ? lz_heap_top_t(r->e->heap) : INFINITY;
+	if (r->nwait > 0 && r->wait[0].t < t)
+		t = r->wait[0].t;
+	return r->e->t_base + t;
+}
+
+/* Where the window starting at T ends: T + width, the next re-base time or t_stop,
+ * whichever comes first (or the end a cut forced); and what it saves at its start. */
+static int begin_window(lz_pedmd *r, double t_stop)
+{
+	lz_edmd *e = r->e;
+	double rebase = (floor(r->T / r->p.rebase) + 1) * r->p.rebase;
+	double end = isnan(r->forced_end) ? r->T + r->width : r->forced_end;
+	r->rebase_at_end = rebase <= end && rebase <= t_stop;
+	r->forced = !isnan(r->forced_end);
+	r->t_end = fmin(fmin(end, rebase), t_stop);
+	r->forced_end = NAN;
+	r->epoch++;
+	r->nsaved = 0;
+	r->snap = *e;
+	if (r->nwait > 0 && lz_pedmd_grow((void **)&r->wait0, &r->capwait0, r->nwait, sizeof *r->wait0))
+		return LZ_ENOMEM;
+	if (r->nwait > 0)
+		memcpy(r->wait0, r->wait, r->nwait * sizeof *r->wait);
+	r->nwait0 = r->nwait;
+	r->clock0 = r->clock;
+	r->next0 = next_time(r);
+	r->nwlog = 0;
+	r->wcommit = 0;
+	r->wvirial = 0;
+	r->t_error = INFINITY;
+	r->counts.windows++;
+	r->phase = RUN;
+	return LZ_OK;
+}
+
+/* Poll and apply every message that has arrived. Only while the window runs: a
+ * message that comes while this rank still waits for the verdict belongs to the next
+ * window (its sender has the verdict already) and stays with the transport until then.
+ * After a causality error the window will be rolled back, so messages are only
+ * counted (the cut needs every message received). */
+static int receive(lz_pedmd *r)
+{
+	lz_pedmd_message m;
+	int from, st = LZ_OK;
+	size_t n;
+	while (r->phase == RUN && (st = lz_msg_poll(r->msg, &from, &m, sizeof m, &n)) == 1) {
+		r->woke = 1;
+		if (n != sizeof m)
+			return lz_error(LZ_EDOM, "rank %d got a message of %zu bytes from rank %d, not "
+			                "%zu", r->rank, n, from, sizeof m);
+		if (r->t_error == INFINITY && (st = lz_pedmd_apply(r, &m)) != LZ_OK)
+			return st;
+	}
+	return st;
+}
+
+/* The next thing to do in time order, if it is due before the window ends: the
+ * earliest waiting message or event; *did = 1 when something was done. On a tie the
+ * event goes first: a message at the time of one of this rank's events is the other
+ * half of the same replicated collision, which the rank must carry out itself (the
+ * message then brings the ghost's record this rank computed already). */
+static int advance_one(lz_pedmd *r, int *did)
+{
+	lz_edmd *e = r->e;
+	double te = e->heap->n ? lz_heap_top_t(e->heap) : INFINITY;
+	if (r->nwait > 0 && r->wait[0].t < te && e->t_base + r->wait[0].t <= r->t_end) {
+		lz_pedmd_message m = wait_pop(r);
+		*did = 1;
+		if (m.t > r->clock)  /* it is next: the rank's time moves on to it */
+			r->clock = r->e->now = m.t;
+		return lz_pedmd_apply(r, &m);
+	}
+	return lz_pedmd_step(r, did);
+}
+
+static void commit(lz_pedmd *r)
+{
+	for (size_t k = 0; k < r->nwlog; k++) {
+		const lz_pedmd_record *q = &r->wlog[k];
+		r->counts.collisions += q->kind == LZ_PEDMD_COLLISION;
+		r->counts.crossings += q->kind == LZ_PEDMD_CROSSING;
+		r->counts.bounces += q->kind == LZ_PEDMD_BOUNCE;
+		r->counts.stale += q->kind == LZ_PEDMD_STALE;
+	}
+	if (r->p.log && r->nwlog > 0 &&
+	    lz_pedmd_grow((void **)&r->clog, &r->capclog, r->nclog + r->nwlog - 1, sizeof *r->clog) == LZ_OK) {
+		memcpy(r->clog + r->nclog, r->wlog, r->nwlog * sizeof *r->wlog);
+		r->nclog += r->nwlog;
+	}
+	r->counts.committed += r->wcommit;
+	r->counts.virial += r->wvirial;
+	uint64_t bytes = r->nsaved * sizeof *r->saved;
+	if (bytes > r->counts.saved_bytes)
+		r->counts.saved_bytes = bytes;
+}
+
+/* Re-base at the window's end, as lz_edmd_run then lz_edmd_rebase do serially. */
+static void rebase(lz_pedmd *r)
+{
+	lz_edmd *e = r->e;
+	e->now = r->t_end - e->t_base;
+	double now = e->now;
+	lz_edmd_rebase(e);
+	for (size_t i = 0; i < e->n; i++) {
+		r->own[i].t -= now;
+		r->ghost[i].t -= now;
+		r->heard[i] -= now;
+	}
+	for (size_t k = 0; k < r->nwait; k++)
+		r->wait[k].t -= now;
+	for (size_t c = 0; c < e->ncells; c++)
+		r->read[c] -= now;
+	r->clock = 0;
+}
+
+/* Every owned particle brought to t_stop, as lz_edmd_run's stop does. */
+static void finish(lz_pedmd *r, double t_stop)
+{
+	lz_edmd *e = r->e;
+	e->now = t_stop - e->t_base;
+	for (size_t i = 0; i < e->n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED)
+			lz_edmd_advance(e, &e->p[i], e->now);
+	r->phase = DONE;
+}
+
+/* At the cut: act on the verdict. */
+static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
+{
+	double end;
+	int v = lz_pedmd_decide(t_error, r->T, t_next, &end);
+	if (v == LZ_PEDMD_COMMIT) {
+		commit(r);
+		if (r->rebase_at_end)
+			rebase(r);
+		r->T = r->t_end;
+		if (!r->forced)  /* a window cut short by a cut proves nothing of the width */
+			r->width = fmin(2 * r->width, 64 * r->p.window);
+		r->phase = r->T >= t_stop ? DONE : BEGIN;
+		if (r->phase == DONE)
+			finish(r, t_stop);
+		return;
+	}
+	lz_pedmd_restore(r);
+	if (v == LZ_PEDMD_ROLLBACK) {
+		r->counts.rollbacks++;
+		r->width = fmax(r->width / 2, r->p.window / 64);
+	} else {
+		r->counts.conservative++;
+	}
+	r->forced_end = end;
+	r->phase = BEGIN;
+}
+
+/* The cut: rounds of (sent, received, busy) sums until two in a row agree, nothing is
+ * in flight and nobody moved (Mattern's counters); then one round of (error, next)
+ * minima, and the verdict. */
+static int cut(lz_pedmd *r, double t_stop)
+{
+	double out[3];
+	if (r->in_round) {
+		int got = lz_msg_reduce_test(r->msg, out);
+		if (got != 1)
+			return got;  /* 0: not yet; an LZ_E code */
+		r->in_round = 0;
+		if (r->phase == DECIDE) {
+			verdict(r, out[0], out[1], t_stop);
+			return LZ_OK;
+		}
+		int quiet = out[2] == 0 && out[0] == out[1] && r->rounds > 0 &&
+		            out[0] == r->last_sum[0] && out[1] == r->last_sum[1];
+		memcpy(r->last_sum, out, sizeof out);
+		r->rounds++;
+		if (quiet) {
+			double in[2] = {r->e->t_base + r->t_error, r->next0};
+			r->phase = DECIDE;
+			r->in_round = 1;
+			return lz_msg_reduce_start(r->msg, LZ_MSG_MINIMUM, in, 2);
+		}
+	}
+	lz_msg_counts c = lz_msg_counters(r->msg);
+	double in[3] = {(double)c.sent, (double)c.received, (double)r->woke};
+	r->woke = 0;
+	r->in_round = 1;
+	return lz_msg_reduce_start(r->msg, LZ_MSG_SUM, in, 3);
+}
+
+int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
+{
+	*state = LZ_WORK_BUSY;
+	if (r->phase == DONE) {
+		*state = LZ_WORK_DONE;
+		return LZ_OK;
+	}
+	if (r->phase == BEGIN) {
+		if (r->T >= t_stop) {
+			finish(r, t_stop);
+			*state = LZ_WORK_DONE;
+			return LZ_OK;
+		}
+		int st = begin_window(r, t_stop);
+		if (st != LZ_OK)
+			return st;
+		r->rounds = 0;
+	}
+	int st = receive(r);
+	if (st != LZ_OK)
+		return st;
+	int did = 0, events = 0;
+	while (r->phase == RUN && r->t_error == INFINITY && events < r->p.work) {
+		int one = 0;
+		if ((st = advance_one(r, &one)) != LZ_OK)
+			return st;
+		if (!one)
+			break;
+		did = 1;
+		events++;
+		r->woke = 1;
+	}
+	lz_msg_charge(r->msg, events);
+	int rounds = r->rounds, phase = r->phase;
+	if ((!did || r->t_error != INFINITY || r->in_round) && (st = cut(r, t_stop)) != LZ_OK)
+		return st;
+	did |= r->rounds != rounds || r->phase != phase;  /* the cut moved on */
+	if (r->phase == DONE)
+		*state = LZ_WORK_DONE;
+	else if (!did)
+		*state = LZ_WORK_WAIT;
+	return LZ_OK;
+}
+
+/* ---- the audit ---- */
+
+static int audit_owned(lz_pedmd *const *ranks, int P, uint32_t i, int *owner)
+{
+	*owner = -1;
+	for (int k = 0; k < P; k++) {
+		const lz_pedmd *r = ranks[k];
+		if (r->role[i] != LZ_PEDMD_OWNED)
+			continue;
+		if (*owner >= 0)
+			return lz_error(LZ_EDOM, "particle %u is owned by ranks %d and %d", i, *owner, k);
+		*owner = k;
+		uint32_t c = r->e->p[i].cell;
+		if (lz_pedmd_owner(r->d, c) != k)
+			return lz_error(LZ_EDOM, "rank %d owns particle %u in cell %u, which rank %d owns",
+			                k, i, c, lz_pedmd_owner(r->d, c));
+		if (!lz_heap_contains(r->e->heap, i))
+			return lz_error(LZ_EDOM, "rank %d owns particle %u, which is not in its heap", k, i);
+	}
+	if (*owner < 0)
+		return lz_error(LZ_EDOM, "particle %u is owned by no rank", i);
+	return LZ_OK;
+}
+
+int lz_pedmd_audit(lz_pedmd *const *ranks, int P)
+{
+	size_t n = ranks[0]->e->n;
+	for (uint32_t i = 0; i < n; i++) {
+		int o;
+		if (audit_owned(ranks, P, i, &o))
+			return LZ_EDOM;
+		const lz_pedmd *owner = ranks[o];
+		const lz_edmd_particle *p = &owner->e->p[i];
+		for (int k = 0; k < P; k++) {
+			const lz_pedmd *r = ranks[k];
+			int halo = r->cls[p->cell] == LZ_PEDMD_HALO;
+			if (k == o || (!halo && r->role[i] == LZ_PEDMD_ABSENT))
+				continue;
+			if (halo != (r->role[i] == LZ_PEDMD_GHOST))
+				return lz_error(LZ_EDOM, "particle %u (rank %d's, cell %u) is %s on rank %d",
+				                i, o, p->cell, halo ? "missing as a ghost" : "a ghost out of the halo", k);
+			if (memcmp(&r->e->p[i], p, sizeof *p) ||
+			    memcmp(&r->ghost[i], &owner->own[i], sizeof owner->own[i]))
+				return lz_error(LZ_EDOM, "rank %d's ghost of particle %u differs from rank %d's "
+				                "record or event", k, i, o);
+		}
+	}
+	return LZ_OK;
+}

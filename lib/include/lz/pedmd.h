@@ -1,0 +1,353 @@
+/* lz/pedmd.h — optimistic parallel event-driven hard spheres (Miller & Luding,
+ * J. Comput. Phys. 193, 306 (2004), §III): the serial engine of lz/edmd.h, cut into P
+ * domains that run ahead optimistically, save their state, and roll back when a
+ * message shows they were wrong.
+ *
+ * Domains. The cells of the serial engine are laid along a curve — row by row (slabs
+ * along the slowest axis) or in Morton order (the paper's fig. 4, compact domains) —
+ * and the curve is cut into P runs: rank r owns the cells at curve places cut[r] ..
+ * cut[r+1]-1. On rank r a cell is INTERIOR (owned, its whole 3^dim block owned), BORDER
+ * (owned, some neighbour not), HALO (not owned, next to an owned cell: the particles
+ * there are GHOSTS, copies of their owners' records) or FAR. A prediction for an owned
+ * particle reads only its block, so owned and ghost particles are all it needs.
+ *
+ * One rank is a lz_edmd of all N particles (global numbering: particle i is i
+ * everywhere), of which only the owned and the ghosts are in cells; the heap holds
+ * the owned ones. It runs the serial engine's own predictions (lz_edmd_predict) and
+ * bounces, so a rank computes the same bits as the serial run would for every event,
+ * provided that its ghosts are up to date. Owners keep them up to date: whenever an
+ * owned particle in a BORDER cell changes (its state, its cell, its predicted event),
+ * a message goes to the ranks that hold its cell as HALO — LEAVE when it leaves their
+ * halo, MIGRATE to the new owner when it crosses into another rank's cell.
+ *
+ * Cross-border collisions run on both sides, with the same bits. The serial heap
+ * would take the earlier of i's and j's predicted events; here i's owner knows j's
+ * event from its messages, and a ghost's event aimed at an owned particle i (with i's
+ * current count) takes i's place in the heap when it is the earlier: both ranks then
+ * collide i and j at the same time, and the bounce is symmetric bit for bit. Such a
+ * replicated collision is committed once (by the rank owning the smaller number).
+ *
+ * Optimism. Between two synchronisations (a WINDOW: from T to T_end) every rank runs
+ * its events and the messages it receives in time order, without waiting. A message
+ * may arrive LATE — with a time before what the rank has already done. It is harmless
+ * unless the rank has used what it changes; it is a CAUSALITY ERROR when:
+ *   - a prediction after the message's time read a cell the message changes (the
+ *     ghost's old or new cell: `read` keeps the last time each cell near a border was
+ *     read);
+ *   - a migrated particle must be predicted at a time some particle of its block has
+ *     already passed;
+ *   - a ghost's event aimed at an owned particle falls before the rank's clock.
+ * At the window's end the ranks meet at a consistent cut (no message in flight:
+ * every rank idle and the sums of messages sent and received equal twice in a row)
+ * and decide together: no error anywhere — COMMIT (the saved state is discarded,
+ * fossil collection); an error — ROLLBACK every rank to the saved state and run the
+ * window again up to just before the earliest error (the paper's synchronisation
+ * barrier at the error time); an error at the window's very start — a CONSERVATIVE
+ * STEP: only the events at the global earliest time, which nothing can overtake, so
+ * progress is certain (no livelock).
+ *
+ * State saving. A window saves the first version of every particle record it changes
+ * (its record, event, role and events) and the rank's counters; a rollback writes
+ * them back and rebuilds the cells and the heap. Reverse computation would undo each
+ * event instead, but a bounce is not exactly invertible in floating point.
+ *
+ * Load balancing. At synchronisations every `balance` windows the cuts move along the
+ * curve so that every rank has the same number of committed events, when that makes
+ * the largest load at least `threshold` better; the particles then change owners.
+ *
+ * The clock is re-based (lz_edmd_rebase) at absolute multiples of `rebase` only, the
+ * same times as the serial reference (rebase_auto = 0), so that both round alike:
+ * the committed events, their count, and the final positions and velocities equal the
+ * serial run's bit for bit.
+ *
+ * Units as lz/edmd.h. Memory: each rank holds arrays for all N particles (about 150
+ * bytes per particle per rank) plus what a window saves.
+ */
+#ifndef LZ_PEDMD_H
+#define LZ_PEDMD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lz/edmd.h"
+#include "lz/msg.h"
+
+enum { LZ_PEDMD_ROWS, LZ_PEDMD_MORTON };  /* the curve */
+
+/* Cell classes on one rank (lz_pedmd_classify). */
+enum { LZ_PEDMD_FAR, LZ_PEDMD_HALO, LZ_PEDMD_INTERIOR, LZ_PEDMD_BORDER };
+
+/* Particle roles on one rank. */
+enum { LZ_PEDMD_ABSENT, LZ_PEDMD_OWNED, LZ_PEDMD_GHOST };
+
+/* The most ranks. */
+#define LZ_PEDMD_RANKS_MAX 256
+
+/* The decomposition: the cells along a curve, cut into P runs. Invariants:
+ * curve[place[c]] = c for every cell; cut[0] = 0 < cut[1] < ... < cut[P] = ncells. */
+typedef struct {
+	int P;
+	int kind;            /* LZ_PEDMD_ROWS or LZ_PEDMD_MORTON */
+	size_t ncells;
+	uint32_t *curve;     /* curve[k]: the cell at place k */
+	uint32_t *place;     /* place[c]: where cell c lies on the curve */
+	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1];
+} lz_pedmd_domains;
+
+/* An event as the owner predicted it: time (in the common time base), partner
+ * (as lz_edmd_event) and the partner's count. */
+typedef struct {
+	double t;
+	lz_edmd_event ev;
+} lz_pedmd_event;
+
+/* A message between ranks: what changed on a particle, and when. */
+enum { LZ_PEDMD_STATE, LZ_PEDMD_MIGRATE, LZ_PEDMD_LEAVE };
+typedef struct {
+	double t;              /* the sender's clock when it changed */
+	uint32_t id;           /* the particle */
+	uint32_t kind;         /* STATE, MIGRATE or LEAVE */
+	lz_edmd_particle p;    /* its record after the change (p.cell: its cell now) */
+	lz_pedmd_event event;  /* its next event as its owner predicted it */
+} lz_pedmd_message;
+
+/* One committed (or processed) event, for the checks against the serial run. */
+enum { LZ_PEDMD_COLLISION, LZ_PEDMD_CROSSING, LZ_PEDMD_BOUNCE, LZ_PEDMD_STALE };
+typedef struct {
+	double t;       /* absolute time */
+	uint32_t i, j;  /* particles (j = i for one-particle events; i < j for collisions) */
+	uint32_t kind;
+} lz_pedmd_record;
+
+/* The first version, in this window, of one particle on this rank. */
+typedef struct {
+	uint32_t id;
+	uint8_t role, in_heap;
+	lz_edmd_particle p;
+	lz_edmd_event ev;
+	lz_pedmd_event own, ghost;
+	double key, heard;
+} lz_pedmd_saved;
+
+/* Counters of one rank. */
+typedef struct {
+	uint64_t processed;      /* events carried out, rolled back ones included */
+	uint64_t committed;      /* events committed (replicated collisions once) */
+	uint64_t windows, rollbacks, conservative, balances;
+	uint64_t late_harmless;  /* messages that came late but changed nothing used */
+	uint64_t saved_bytes;    /* the most a window saved */
+	uint64_t collisions, crossings, bounces, stale;  /* committed, by kind */
+	double virial;           /* committed collisions' virial (this rank's share) */
+} lz_pedmd_counts;
+
+/* What a run is asked to do. */
+typedef struct {
+	double window;      /* the first window's length (> 0); it adapts: x2 after a
+	                       commit, /2 after a rollback, within [window/64, 64 window] */
+	double rebase;      /* re-base the clock at absolute multiples of this (> 0) */
+	int balance;        /* rebalance every this many windows (0: never) */
+	double threshold;   /* ... when the largest load improves by this fraction */
+	int log;            /* 1: keep the committed events (lz_pedmd_log) */
+	int work;           /* events per turn of the work function (> 0) */
+} lz_pedmd_params;
+
+/* One rank. Invariants between events: an OWNED particle lies in an owned cell and
+ * is in the heap, keyed by the earlier of its own prediction (own[i]) and the events
+ * of ghosts aimed at it with its current count; a GHOST lies in a HALO cell with its
+ * owner's record and event (ghost[i]); every other particle is ABSENT (in no cell, its
+ * record meaningless). Times are in the common time base (e->t_base, the same on
+ * every rank), the window's bounds absolute. */
+typedef struct lz_pedmd {
+	lz_edmd *e;                   /* arrays for all N particles, global numbering */
+	const lz_pedmd_domains *d;
+	lz_msg *msg;
+	lz_pedmd_params p;
+	int rank;
+	uint8_t *cls;                 /* the class of every cell for this rank */
+	uint8_t *near;                /* 1: the cell's block holds a HALO or BORDER cell */
+	double *read;                 /* HALO and BORDER cells: the last time a prediction
+	                                 read the cell */
+	uint8_t *role;                /* every particle's role */
+	lz_pedmd_event *own;          /* OWNED: its own prediction */
+	lz_pedmd_event *ghost;        /* GHOST: its owner's prediction */
+	double *heard;                /* the time of the last message applied about the
+	                                 particle (-INFINITY: none): an older one that
+	                                 arrives after it (from a former owner) is stale */
+	double clock;                 /* the latest time the rank has reached (relative);
+	                                 e->now equals it except while a late message is
+	                                 applied at its own, earlier time */
+	double *scratch;              /* N doubles for lz_pedmd_restore */
+	/* messages that wait for the rank's clock: a min-heap by time */
+	lz_pedmd_message *wait;
+	size_t nwait, capwait;
+	/* the window */
+	double T, t_end;              /* absolute; events with t_base + t <= t_end run */
+	double t_error;               /* the earliest causality error (INFINITY: none) */
+	double width;                 /* the next window's length */
+	/* state saving: particles saved this window (mark[i] == epoch), and the rest */
+	uint32_t epoch;
+	uint32_t *mark;
+	lz_pedmd_saved *saved;
+	size_t nsaved, capsaved;
+	lz_edmd snap;                 /* the system's scalars at the window's start */
+	double clock0;                /* the rank's clock then */
+	double next0;                 /* and the time of its first event or message then
+	                                 (absolute): a conservative step goes to the
+	                                 earliest of these over all ranks */
+	lz_pedmd_message *wait0;      /* the waiting messages then */
+	size_t nwait0, capwait0;
+	/* the events of this window, and the committed ones */
+	lz_pedmd_record *wlog, *clog;
+	size_t nwlog, capwlog, nclog, capclog;
+	uint64_t wcommit;             /* events of this window it would commit */
+	double wvirial;               /* and their virial */
+	double *load;                 /* per cell: committed events since the last balance */
+	lz_pedmd_counts counts;
+	/* the protocol (pedmd_lib.c) */
+	int phase, in_round, woke, rounds, rebase_at_end, forced;
+	double last_sum[3];
+	double forced_end;            /* the next window's end, set at a cut (NAN: none) */
+} lz_pedmd;
+
+/* ---- graded (solutions/06-parallel/pedmd.c) ---- */
+
+/* The rank that owns cell c: the r with cut[r] <= place[c] < cut[r+1]. O(log P). */
+int lz_pedmd_owner(const lz_pedmd_domains *d, uint32_t c);
+
+/* The class of every cell of e's grid for rank `rank` into cls[ncells]: INTERIOR or
+ * BORDER when owned (BORDER when some cell of its block is owned by another rank),
+ * HALO when not owned but in the block of an owned cell, FAR otherwise. O(ncells ·
+ * 3^dim · log P). */
+void lz_pedmd_classify(const lz_edmd *e, const lz_pedmd_domains *d, int rank, uint8_t *cls);
+
+/* The ranks other than `rank` that own a cell of cell c's block — those that hold c
+ * as HALO and must hear of every change there — each once, in increasing order, into
+ * out[]; their number. O(3^dim · log P). */
+int lz_pedmd_listeners(const lz_edmd *e, const lz_pedmd_domains *d, int rank, uint32_t c,
+                       int *out);
+
+/* Carry out rank r's earliest event (its heap's top), if it is no later than r's
+ * window end, as lz_edmd_step would, but on a rank: a partner may be a ghost (the
+ * collision is replicated: both are bounced, only owned particles predicted again);
+ * a crossing into a cell another rank owns hands the particle over (MIGRATE) and
+ * keeps it here as a ghost; every change of an owned particle in a BORDER cell is
+ * sent to the cell's listeners (lz_pedmd_announce); the event counts as processed,
+ * and goes into the window's log (lz_pedmd_note) once — a replicated collision on
+ * the rank that owns the smaller of the two numbers. *did = 1 when an event was
+ * carried out, 0 when none is due before the window ends. LZ_OK or an LZ_E code
+ * (a message that could not be sent). O(log N + messages). */
+int lz_pedmd_step(lz_pedmd *r, int *did);
+
+/* Apply message m, which has arrived at rank r: a ghost's new state and event
+ * (STATE), a particle handed over (MIGRATE), a ghost gone (LEAVE). A message later
+ * than r's clock waits (it is queued and applied in time order); an earlier one is
+ * applied at once when nothing r has done used what it changes, and otherwise marks
+ * r's CAUSALITY ERROR at the message's time (r then stops carrying out events until
+ * the cut). Returns LZ_OK or an LZ_E code (an error in the data, not causality).
+ * O(block). */
+int lz_pedmd_apply(lz_pedmd *r, const lz_pedmd_message *m);
+
+/* Before particle i (present on r or not) is changed for the first time in this
+ * window, save its version (lz_pedmd_saved): LZ_OK, or LZ_ENOMEM; O(1). Roll the rank
+ * back to the window's start: every saved version written back, the system's scalars
+ * (snap), the clock and the queue of waiting messages as they were, then the cells
+ * and the heap rebuilt (lz_pedmd_rebuild). O(saved + N). */
+int lz_pedmd_save(lz_pedmd *r, uint32_t i);
+void lz_pedmd_restore(lz_pedmd *r);
+
+/* The decision at a cut. t_error: the earliest causality error on any rank (INFINITY:
+ * none); T: the window's start; t_next: the earliest event or message anywhere.
+ * COMMIT when there was no error; ROLLBACK with the next window ending just before
+ * t_error when t_error > T; CONSERVATIVE (the next window ends at t_next, events at
+ * exactly t_next only) when the error came at T itself and a window cannot be
+ * shortened further. *t_end gets the next window's end for ROLLBACK and CONSERVATIVE.
+ * O(1). */
+enum { LZ_PEDMD_COMMIT, LZ_PEDMD_ROLLBACK, LZ_PEDMD_CONSERVATIVE };
+int lz_pedmd_decide(double t_error, double T, double t_next, double *t_end);
+
+/* New cuts from the committed events of every cell (load[c], c in the grid): cut the
+ * curve where the running total of load along it reaches k/P of the whole (every rank
+ * at least one cell), into new_cut[0 .. P]. Returns 1 when the largest rank load of
+ * the new cuts is at least a fraction `threshold` below that of the old ones (then
+ * the cuts should move), else 0 (new_cut = the old cuts). O(ncells). */
+int lz_pedmd_rebalance(const lz_pedmd_domains *d, const double *load, double threshold,
+                       uint32_t *new_cut);
+
+/* ---- what the graded functions build on (library) ---- */
+
+/* Predict owned particle i again at e->now (lz_edmd_predict), keep that as own[i],
+ * let an earlier ghost event aimed at i take its place in the heap, and note the
+ * cells the prediction read (read[]); i is saved first. LZ_OK, or LZ_ENOMEM; a key
+ * before the rank's clock is a causality error (lz_pedmd_late). O(block). */
+int lz_pedmd_predict(lz_pedmd *r, uint32_t i);
+
+/* Recompute owned particle i's key from own[i] and the ghosts' events aimed at it
+ * (after a ghost's event changed), i saved first: as lz_pedmd_predict without the
+ * prediction. O(block). */
+int lz_pedmd_retarget(lz_pedmd *r, uint32_t i);
+
+/* Tell the ranks that hold owned particle i's cell as HALO what it is now (STATE),
+ * and those that held its old cell `from` (when it moved, else from = its cell) but
+ * not the new one that it left (LEAVE). `to_owner` >= 0: that rank owns the new cell
+ * and gets MIGRATE; the new cell's other listeners then hear from the new owner once
+ * it has predicted the particle, not from here. t: the time of the change. LZ_OK or
+ * an LZ_E code. */
+int lz_pedmd_announce(lz_pedmd *r, uint32_t i, uint32_t from, int to_owner, double t);
+
+/* Record the causality error at time t (relative): the rank stops carrying out events
+ * until the cut. Returns LZ_OK (a causality error is not a failure of the call). */
+int lz_pedmd_late(lz_pedmd *r, double t);
+
+/* An event (relative time t) this window will commit, if it commits: counted (with a
+ * collision's virial), and appended to the window's log when the run keeps one. */
+void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
+                   double virial);
+
+/* Room for entries 0 .. n of a growing array *v of *cap entries of `size` bytes
+ * (doubling): n is the number in use when one more is to be appended. LZ_OK or
+ * LZ_ENOMEM. */
+int lz_pedmd_grow(void **v, size_t *cap, size_t n, size_t size);
+
+/* Queue message m until the rank's clock reaches it. LZ_OK or LZ_ENOMEM. */
+int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m);
+
+/* After a restore: rebuild the cell lists from the particles' roles and cells, and
+ * the heap from the owned particles' keys. O(N + cells). */
+void lz_pedmd_rebuild(lz_pedmd *r, const double *key);
+
+/* 1 when every particle of cell c's block is at or before time t (relative): a
+ * prediction at t can read them. O(block). */
+int lz_pedmd_block_at(const lz_pedmd *r, uint32_t c, double t);
+
+/* ---- the engine (library) ---- */
+
+/* The decomposition of e's grid into P ranks along a curve, with even cuts (P <= the
+ * cells). NULL with lz_error naming the range on a bad P or kind. O(ncells log). */
+lz_pedmd_domains *lz_pedmd_domains_alloc(const lz_edmd *e, int P, int kind);
+void lz_pedmd_domains_free(lz_pedmd_domains *d);
+
+
+/* Rank `rank` of a run over d (kept, not owned) talking through msg, starting from the
+ * serial system s (the same on every rank: lz_edmd_start done, rebase_auto = 0): it
+ * keeps its owned particles and ghosts. NULL with lz_error. O(N + cells). */
+lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
+                         const lz_pedmd_params *p);
+void lz_pedmd_free(lz_pedmd *r);
+
+/* One turn of the rank's work (lz_work_fn for the stub, or a loop under MPI): run
+ * towards t_stop (absolute time) window by window. */
+int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state);
+
+/* The rank's system, counters and committed events (n records). */
+const lz_edmd *lz_pedmd_system(const lz_pedmd *r);
+lz_pedmd_counts lz_pedmd_counters(const lz_pedmd *r);
+const lz_pedmd_record *lz_pedmd_log(const lz_pedmd *r, size_t *n);
+int lz_pedmd_role(const lz_pedmd *r, uint32_t i);
+
+/* The invariants of rank r at a cut: its owned particles lie in owned cells, each in
+ * the heap once with its event, its ghosts in HALO cells; ghost records equal their
+ * owners' (ranks[], all P of them, in one process: the stub). LZ_OK or LZ_EDOM naming
+ * the first broken one. O(N). */
+int lz_pedmd_audit(lz_pedmd *const *ranks, int P);
+
+#endif
