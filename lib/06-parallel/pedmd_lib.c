@@ -466,7 +466,6 @@ void lz_pedmd_rebuild(lz_pedmd *r, const double *key)
 
 /* ---- the window protocol ---- */
 
-enum { BEGIN, RUN, DECIDE, DONE };
 
 /* The earliest time anything happens next on this rank (absolute). */
 static double next_time(const lz_pedmd *r)
@@ -481,13 +480,21 @@ static double next_time(const lz_pedmd *r)
  * whichever comes first (or the end a cut forced); and what it saves at its start. */
 static int begin_window(lz_pedmd *r, double t_stop)
 {
-	lz_edmd *e = r->e;
 	double rebase = (floor(r->T / r->p.rebase) + 1) * r->p.rebase;
 	double end = isnan(r->forced_end) ? r->T + r->width : r->forced_end;
 	r->rebase_at_end = rebase <= end && rebase <= t_stop;
 	r->forced = !isnan(r->forced_end);
-	r->t_end = fmin(fmin(end, rebase), t_stop);
 	r->forced_end = NAN;
+	int st = lz_pedmd_begin(r, fmin(fmin(end, rebase), t_stop));
+	r->counts.windows++;
+	r->phase = LZ_PEDMD_RUN;
+	return st;
+}
+
+int lz_pedmd_begin(lz_pedmd *r, double t_end)
+{
+	lz_edmd *e = r->e;
+	r->t_end = t_end;
 	r->epoch++;
 	r->nsaved = 0;
 	r->snap = *e;
@@ -502,8 +509,6 @@ static int begin_window(lz_pedmd *r, double t_stop)
 	r->wcommit = 0;
 	r->wvirial = 0;
 	r->t_error = INFINITY;
-	r->counts.windows++;
-	r->phase = RUN;
 	return LZ_OK;
 }
 
@@ -517,7 +522,7 @@ static int receive(lz_pedmd *r)
 	lz_pedmd_message m;
 	int from, st = LZ_OK;
 	size_t n;
-	while (r->phase == RUN && (st = lz_msg_poll(r->msg, &from, &m, sizeof m, &n)) == 1) {
+	while (r->phase == LZ_PEDMD_RUN && (st = lz_msg_poll(r->msg, &from, &m, sizeof m, &n)) == 1) {
 		r->woke = 1;
 		if (n != sizeof m)
 			return lz_error(LZ_EDOM, "rank %d got a message of %zu bytes from rank %d, not "
@@ -595,7 +600,7 @@ static void finish(lz_pedmd *r, double t_stop)
 	for (size_t i = 0; i < e->n; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED)
 			lz_edmd_advance(e, &e->p[i], e->now);
-	r->phase = DONE;
+	r->phase = LZ_PEDMD_DONE;
 }
 
 /* At the cut: act on the verdict. */
@@ -610,8 +615,8 @@ static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
 		r->T = r->t_end;
 		if (!r->forced)  /* a window cut short by a cut proves nothing of the width */
 			r->width = fmin(2 * r->width, 64 * r->p.window);
-		r->phase = r->T >= t_stop ? DONE : BEGIN;
-		if (r->phase == DONE)
+		r->phase = r->T >= t_stop ? LZ_PEDMD_DONE : LZ_PEDMD_BEGIN;
+		if (r->phase == LZ_PEDMD_DONE)
 			finish(r, t_stop);
 		return;
 	}
@@ -623,7 +628,7 @@ static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
 		r->counts.conservative++;
 	}
 	r->forced_end = end;
-	r->phase = BEGIN;
+	r->phase = LZ_PEDMD_BEGIN;
 }
 
 /* The cut: rounds of (sent, received, busy) sums until two in a row agree, nothing is
@@ -637,7 +642,7 @@ static int cut(lz_pedmd *r, double t_stop)
 		if (got != 1)
 			return got;  /* 0: not yet; an LZ_E code */
 		r->in_round = 0;
-		if (r->phase == DECIDE) {
+		if (r->phase == LZ_PEDMD_DECIDE) {
 			verdict(r, out[0], out[1], t_stop);
 			return LZ_OK;
 		}
@@ -647,7 +652,7 @@ static int cut(lz_pedmd *r, double t_stop)
 		r->rounds++;
 		if (quiet) {
 			double in[2] = {r->e->t_base + r->t_error, r->next0};
-			r->phase = DECIDE;
+			r->phase = LZ_PEDMD_DECIDE;
 			r->in_round = 1;
 			return lz_msg_reduce_start(r->msg, LZ_MSG_MINIMUM, in, 2);
 		}
@@ -662,11 +667,11 @@ static int cut(lz_pedmd *r, double t_stop)
 int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 {
 	*state = LZ_WORK_BUSY;
-	if (r->phase == DONE) {
+	if (r->phase == LZ_PEDMD_DONE) {
 		*state = LZ_WORK_DONE;
 		return LZ_OK;
 	}
-	if (r->phase == BEGIN) {
+	if (r->phase == LZ_PEDMD_BEGIN) {
 		if (r->T >= t_stop) {
 			finish(r, t_stop);
 			*state = LZ_WORK_DONE;
@@ -681,7 +686,7 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 	if (st != LZ_OK)
 		return st;
 	int did = 0, events = 0;
-	while (r->phase == RUN && r->t_error == INFINITY && events < r->p.work) {
+	while (r->phase == LZ_PEDMD_RUN && r->t_error == INFINITY && events < r->p.work) {
 		int one = 0;
 		if ((st = advance_one(r, &one)) != LZ_OK)
 			return st;
@@ -696,7 +701,7 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 	if ((!did || r->t_error != INFINITY || r->in_round) && (st = cut(r, t_stop)) != LZ_OK)
 		return st;
 	did |= r->rounds != rounds || r->phase != phase;  /* the cut moved on */
-	if (r->phase == DONE)
+	if (r->phase == LZ_PEDMD_DONE)
 		*state = LZ_WORK_DONE;
 	else if (!did)
 		*state = LZ_WORK_WAIT;

@@ -77,6 +77,10 @@ enum { LZ_PEDMD_ROWS, LZ_PEDMD_MORTON };  /* the curve */
 /* Cell classes on one rank (lz_pedmd_classify). */
 enum { LZ_PEDMD_FAR, LZ_PEDMD_HALO, LZ_PEDMD_INTERIOR, LZ_PEDMD_BORDER };
 
+/* Where a rank is in the window protocol of lz_pedmd_work: about to begin a window,
+ * running it, at the cut waiting for the verdict, or done. */
+enum { LZ_PEDMD_BEGIN, LZ_PEDMD_RUN, LZ_PEDMD_DECIDE, LZ_PEDMD_DONE };
+
 /* Particle roles on one rank. */
 enum { LZ_PEDMD_ABSENT, LZ_PEDMD_OWNED, LZ_PEDMD_GHOST };
 
@@ -204,7 +208,8 @@ typedef struct lz_pedmd {
 	double *load;                 /* per cell: committed events since the last balance */
 	lz_pedmd_counts counts;
 	/* the protocol (pedmd_lib.c) */
-	int phase, in_round, woke, rounds, rebase_at_end, forced;
+	int phase;                    /* LZ_PEDMD_BEGIN .. LZ_PEDMD_DONE */
+	int in_round, woke, rounds, rebase_at_end, forced;
 	double last_sum[3];
 	double forced_end;            /* the next window's end, set at a cut (NAN: none) */
 } lz_pedmd;
@@ -308,6 +313,12 @@ void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
  * LZ_ENOMEM. */
 int lz_pedmd_grow(void **v, size_t *cap, size_t n, size_t size);
 
+/* Start a window ending at t_end (absolute): what lz_pedmd_restore goes back to —
+ * nothing saved yet, the system's scalars, the clock and the waiting messages as
+ * they are now, an empty window log, no causality error. LZ_OK or LZ_ENOMEM.
+ * O(waiting messages). */
+int lz_pedmd_begin(lz_pedmd *r, double t_end);
+
 /* Queue message m until the rank's clock reaches it. LZ_OK or LZ_ENOMEM. */
 int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m);
 
@@ -349,5 +360,42 @@ int lz_pedmd_role(const lz_pedmd *r, uint32_t i);
  * owners' (ranks[], all P of them, in one process: the stub). LZ_OK or LZ_EDOM naming
  * the first broken one. O(N). */
 int lz_pedmd_audit(lz_pedmd *const *ranks, int P);
+
+/* ---- a whole run in one process (the stub back-end) ---- */
+
+/* P ranks of a run over the stub, made from one serial system. */
+typedef struct {
+	int P;
+	lz_pedmd_domains *d;
+	lz_stub *stub;
+	lz_pedmd **rank;     /* rank[0 .. P-1] */
+	int audit;           /* 1: lz_pedmd_audit at every cut (O(N P) each) */
+	uint64_t audits;     /* cuts audited so far */
+	double t_stop;       /* of the current lz_pedmd_sim_run */
+	double audited_T;    /* the window start audited last */
+} lz_pedmd_sim;
+
+/* The ranks of a run of system s (lz_edmd_start done, rebase_auto = 0) along curve
+ * `kind`, sp->ranks of them, talking through a stub with parameters sp. NULL with
+ * lz_error on a bad parameter (naming its range) or no memory. O(P (N + cells)). */
+lz_pedmd_sim *lz_pedmd_sim_alloc(const lz_edmd *s, int kind, const lz_stub_params *sp,
+                                 const lz_pedmd_params *pp);
+void lz_pedmd_sim_free(lz_pedmd_sim *x);
+
+/* Run every rank to t_stop (absolute, later than where they are): LZ_OK, the first
+ * error of a rank, or LZ_EDOM from the audit (when asked) or a deadlock. */
+int lz_pedmd_sim_run(lz_pedmd_sim *x, double t_stop);
+
+/* The owned particles of every rank, written into out (a system of the same N and
+ * grid; its cells are not updated): the serial picture of the run. */
+void lz_pedmd_sim_gather(const lz_pedmd_sim *x, lz_edmd *out);
+
+/* The counters of all ranks summed (saved_bytes: the largest). */
+lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x);
+
+/* Every rank's committed events in one array (malloc'd, the caller frees it), sorted
+ * by time, then i, then j: the serial run's event log when params.log was 1. NULL
+ * with *n = 0 when there are none or no memory. */
+lz_pedmd_record *lz_pedmd_sim_log(const lz_pedmd_sim *x, size_t *n);
 
 #endif

@@ -1,0 +1,147 @@
+/* pedmd_sim.c — a whole parallel run in one process: the P ranks of lz/pedmd.h over
+ * the stub back-end of lz/msg.h, made from one serial system, run together, audited
+ * at every cut when asked, and gathered back into the serial picture. The tests, the
+ * lesson's experiments and the `lz` program's stub runs all go through here. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lz/error.h"
+#include "lz/pedmd.h"
+
+lz_pedmd_sim *lz_pedmd_sim_alloc(const lz_edmd *s, int kind, const lz_stub_params *sp,
+                                 const lz_pedmd_params *pp)
+{
+	lz_pedmd_sim *x = calloc(1, sizeof *x);
+	if (!x)
+		return lz_error(LZ_ENOMEM, "no memory for a parallel run"), NULL;
+	x->audited_T = -INFINITY;
+	x->stub = lz_stub_alloc(sp);
+	if (!x->stub || !(x->d = lz_pedmd_domains_alloc(s, sp->ranks, kind))) {
+		lz_pedmd_sim_free(x);
+		return NULL;
+	}
+	x->rank = calloc((size_t)sp->ranks, sizeof *x->rank);
+	if (!x->rank) {
+		lz_pedmd_sim_free(x);
+		return lz_error(LZ_ENOMEM, "no memory for %d ranks", sp->ranks), NULL;
+	}
+	x->P = sp->ranks;
+	for (int k = 0; k < x->P; k++)
+		if (!(x->rank[k] = lz_pedmd_alloc(s, x->d, lz_stub_rank(x->stub, k), pp))) {
+			lz_pedmd_sim_free(x);
+			return NULL;
+		}
+	return x;
+}
+
+void lz_pedmd_sim_free(lz_pedmd_sim *x)
+{
+	if (!x)
+		return;
+	for (int k = 0; x->rank && k < x->P; k++)
+		lz_pedmd_free(x->rank[k]);
+	free(x->rank);
+	lz_pedmd_domains_free(x->d);
+	lz_stub_free(x->stub);
+	free(x);
+}
+
+/* Every rank waits to begin the window that starts at time T: the run is at a cut. */
+static int all_at(const lz_pedmd_sim *x, double T)
+{
+	for (int k = 0; k < x->P; k++)
+		if (x->rank[k]->phase != LZ_PEDMD_BEGIN || x->rank[k]->T != T)
+			return 0;
+	return 1;
+}
+
+/* One turn of a rank. When auditing, a rank about to begin a window that starts later
+ * than the last audited cut is held (it spends a turn doing nothing, charged as one
+ * event so that virtual time moves on) until every rank is there; then the cut is
+ * audited once, and they go on. */
+static int work(int rank, void *arg, lz_work *state)
+{
+	lz_pedmd_sim *x = arg;
+	lz_pedmd *r = x->rank[rank];
+	if (x->audit && r->phase == LZ_PEDMD_BEGIN && r->T > x->audited_T) {
+		if (!all_at(x, r->T)) {
+			*state = LZ_WORK_BUSY;
+			lz_msg_charge(r->msg, 1);
+			return LZ_OK;
+		}
+		x->audited_T = r->T;
+		x->audits++;
+		if (lz_pedmd_audit(x->rank, x->P) != LZ_OK)
+			return lz_error(LZ_EDOM, "at the cut of time %.17g: %s", r->T, lz_error_message());
+	}
+	return lz_pedmd_work(r, x->t_stop, state);
+}
+
+int lz_pedmd_sim_run(lz_pedmd_sim *x, double t_stop)
+{
+	x->t_stop = t_stop;
+	return lz_stub_run(x->stub, work, x);
+}
+
+void lz_pedmd_sim_gather(const lz_pedmd_sim *x, lz_edmd *out)
+{
+	for (int k = 0; k < x->P; k++) {
+		const lz_pedmd *r = x->rank[k];
+		for (uint32_t i = 0; i < out->n; i++)
+			if (r->role[i] == LZ_PEDMD_OWNED)
+				out->p[i] = r->e->p[i];
+	}
+}
+
+lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x)
+{
+	lz_pedmd_counts s = {0};
+	for (int k = 0; k < x->P; k++) {
+		lz_pedmd_counts c = x->rank[k]->counts;
+		s.processed += c.processed;
+		s.committed += c.committed;
+		s.windows = c.windows;  /* the same on every rank */
+		s.rollbacks = c.rollbacks;
+		s.conservative = c.conservative;
+		s.balances = c.balances;
+		s.late_harmless += c.late_harmless;
+		s.saved_bytes = c.saved_bytes > s.saved_bytes ? c.saved_bytes : s.saved_bytes;
+		s.collisions += c.collisions;
+		s.crossings += c.crossings;
+		s.bounces += c.bounces;
+		s.stale += c.stale;
+		s.virial += c.virial;
+	}
+	return s;
+}
+
+static int by_time(const void *a, const void *b)
+{
+	const lz_pedmd_record *p = a, *q = b;
+	if (p->t != q->t)
+		return p->t < q->t ? -1 : 1;
+	if (p->i != q->i)
+		return p->i < q->i ? -1 : 1;
+	return (p->j > q->j) - (p->j < q->j);
+}
+
+lz_pedmd_record *lz_pedmd_sim_log(const lz_pedmd_sim *x, size_t *n)
+{
+	size_t total = 0, m;
+	for (int k = 0; k < x->P; k++) {
+		lz_pedmd_log(x->rank[k], &m);
+		total += m;
+	}
+	*n = 0;
+	lz_pedmd_record *all = total ? malloc(total * sizeof *all) : NULL;
+	if (!all)
+		return NULL;
+	for (int k = 0; k < x->P; k++) {
+		const lz_pedmd_record *l = lz_pedmd_log(x->rank[k], &m);
+		memcpy(all + *n, l, m * sizeof *all);
+		*n += m;
+	}
+	qsort(all, total, sizeof *all, by_time);
+	return all;
+}
