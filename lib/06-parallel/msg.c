@@ -360,7 +360,7 @@ static int pick(lz_stub *s, int *burst)
 			k = (k + 1) % P;
 		return k;
 	}
-	if (*burst > 0) {
+	if (*burst > 0 && s->r[s->p.ahead].state != LZ_WORK_DONE) {  /* a burst ends with its rank */
 		(*burst)--;
 		return s->p.ahead;
 	}

@@ -94,9 +94,12 @@ static int check_params(const lz_pedmd_params *p)
 		                p->window);
 	if (!(p->rebase > 0) || !isfinite(p->rebase))
 		return lz_error(LZ_EINVAL, "rebase = %g: a positive, finite time", p->rebase);
-	if (p->balance < 0 || !(p->threshold >= 0 && p->threshold < 1))
-		return lz_error(LZ_EINVAL, "balance = %d (>= 0), threshold = %g (in [0, 1))",
-		                p->balance, p->threshold);
+	if (p->balance != 0)
+		return lz_error(LZ_EINVAL, "balance = %d: the cuts do not move during a run yet, so "
+		                "0; balance them from a pilot run's load (lz_pedmd_sim_alloc_cut)",
+		                p->balance);
+	if (!(p->threshold >= 0 && p->threshold < 1))
+		return lz_error(LZ_EINVAL, "threshold = %g: in [0, 1)", p->threshold);
 	if (p->work < 1)
 		return lz_error(LZ_EINVAL, "work = %d events a turn: at least 1", p->work);
 	return LZ_OK;
@@ -400,10 +403,12 @@ void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
 {
 	r->wcommit++;
 	r->wvirial += virial;
-	if (!r->p.log || lz_pedmd_grow((void **)&r->wlog, &r->capwlog, r->nwlog, sizeof *r->wlog))
+	if (lz_pedmd_grow((void **)&r->wlog, &r->capwlog, r->nwlog, sizeof *r->wlog)) {
+		r->nomem = 1;
 		return;
+	}
 	r->wlog[r->nwlog++] = (lz_pedmd_record){r->e->t_base + t, i < j ? i : j, i < j ? j : i,
-	                                        kind};
+	                                        kind, r->e->p[i].cell};
 }
 
 /* ---- the messages that wait ---- */
@@ -482,7 +487,7 @@ static int begin_window(lz_pedmd *r, double t_stop)
 {
 	double rebase = (floor(r->T / r->p.rebase) + 1) * r->p.rebase;
 	double end = isnan(r->forced_end) ? r->T + r->width : r->forced_end;
-	r->rebase_at_end = rebase <= end && rebase <= t_stop;
+	r->rebase_at_end = rebase <= end && rebase < t_stop;  /* none at the very end, as serially */
 	r->forced = !isnan(r->forced_end);
 	r->forced_end = NAN;
 	int st = lz_pedmd_begin(r, fmin(fmin(end, rebase), t_stop));
@@ -560,6 +565,7 @@ static void commit(lz_pedmd *r)
 		r->counts.crossings += q->kind == LZ_PEDMD_CROSSING;
 		r->counts.bounces += q->kind == LZ_PEDMD_BOUNCE;
 		r->counts.stale += q->kind == LZ_PEDMD_STALE;
+		r->load[q->cell]++;
 	}
 	if (r->p.log && r->nwlog > 0 &&
 	    lz_pedmd_grow((void **)&r->clog, &r->capclog, r->nclog + r->nwlog - 1, sizeof *r->clog) == LZ_OK) {
@@ -696,6 +702,8 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 		events++;
 		r->woke = 1;
 	}
+	if (r->nomem)
+		return lz_error(LZ_ENOMEM, "rank %d: no memory for the log of a window", r->rank);
 	lz_msg_charge(r->msg, events);
 	int rounds = r->rounds, phase = r->phase;
 	if ((!did || r->t_error != INFINITY || r->in_round) && (st = cut(r, t_stop)) != LZ_OK)

@@ -12,6 +12,25 @@
 lz_pedmd_sim *lz_pedmd_sim_alloc(const lz_edmd *s, int kind, const lz_stub_params *sp,
                                  const lz_pedmd_params *pp)
 {
+	return lz_pedmd_sim_alloc_cut(s, kind, NULL, sp, pp);
+}
+
+/* 0 = cut[0] < cut[1] < ... < cut[P] = ncells. */
+static int check_cuts(const uint32_t *cut, int P, size_t ncells)
+{
+	for (int r = 0; r < P; r++)
+		if (cut[r] >= cut[r + 1])
+			return lz_error(LZ_EINVAL, "cut %d = %u, cut %d = %u: every rank needs a cell", r,
+			                cut[r], r + 1, cut[r + 1]);
+	if (cut[0] != 0 || cut[P] != ncells)
+		return lz_error(LZ_EINVAL, "the cuts run from %u to %u, not from 0 to the %zu cells",
+		                cut[0], cut[P], ncells);
+	return LZ_OK;
+}
+
+lz_pedmd_sim *lz_pedmd_sim_alloc_cut(const lz_edmd *s, int kind, const uint32_t *cut,
+                                     const lz_stub_params *sp, const lz_pedmd_params *pp)
+{
 	lz_pedmd_sim *x = calloc(1, sizeof *x);
 	if (!x)
 		return lz_error(LZ_ENOMEM, "no memory for a parallel run"), NULL;
@@ -21,6 +40,12 @@ lz_pedmd_sim *lz_pedmd_sim_alloc(const lz_edmd *s, int kind, const lz_stub_param
 		lz_pedmd_sim_free(x);
 		return NULL;
 	}
+	if (cut && check_cuts(cut, sp->ranks, s->ncells)) {
+		lz_pedmd_sim_free(x);
+		return NULL;
+	}
+	if (cut)
+		memcpy(x->d->cut, cut, (size_t)(sp->ranks + 1) * sizeof *cut);
 	x->rank = calloc((size_t)sp->ranks, sizeof *x->rank);
 	if (!x->rank) {
 		lz_pedmd_sim_free(x);
@@ -94,6 +119,14 @@ void lz_pedmd_sim_gather(const lz_pedmd_sim *x, lz_edmd *out)
 	}
 }
 
+void lz_pedmd_sim_load(const lz_pedmd_sim *x, double *load)
+{
+	memset(load, 0, x->d->ncells * sizeof *load);
+	for (int k = 0; k < x->P; k++)
+		for (size_t c = 0; c < x->d->ncells; c++)
+			load[c] += x->rank[k]->load[c];
+}
+
 lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x)
 {
 	lz_pedmd_counts s = {0};
@@ -116,14 +149,16 @@ lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x)
 	return s;
 }
 
-static int by_time(const void *a, const void *b)
+int lz_pedmd_record_order(const void *a, const void *b)
 {
 	const lz_pedmd_record *p = a, *q = b;
 	if (p->t != q->t)
 		return p->t < q->t ? -1 : 1;
 	if (p->i != q->i)
 		return p->i < q->i ? -1 : 1;
-	return (p->j > q->j) - (p->j < q->j);
+	if (p->j != q->j)
+		return p->j < q->j ? -1 : 1;
+	return (p->kind > q->kind) - (p->kind < q->kind);
 }
 
 lz_pedmd_record *lz_pedmd_sim_log(const lz_pedmd_sim *x, size_t *n)
@@ -142,6 +177,6 @@ lz_pedmd_record *lz_pedmd_sim_log(const lz_pedmd_sim *x, size_t *n)
 		memcpy(all + *n, l, m * sizeof *all);
 		*n += m;
 	}
-	qsort(all, total, sizeof *all, by_time);
+	qsort(all, total, sizeof *all, lz_pedmd_record_order);
 	return all;
 }

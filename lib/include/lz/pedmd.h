@@ -51,9 +51,11 @@
  * them back and rebuilds the cells and the heap. Reverse computation would undo each
  * event instead, but a bounce is not exactly invertible in floating point.
  *
- * Load balancing. At synchronisations every `balance` windows the cuts move along the
- * curve so that every rank has the same number of committed events, when that makes
- * the largest load at least `threshold` better; the particles then change owners.
+ * Load balancing. Every rank counts the committed events of each cell (load). New
+ * cuts along the curve give every rank the same share of the load (lz_pedmd_rebalance);
+ * a run started with those cuts is balanced for a system whose load stays where it
+ * was. (Moving the cuts during a run, with the particles changing owners at a cut, is
+ * the next step and not done yet: params.balance must be 0.)
  *
  * The clock is re-based (lz_edmd_rebase) at absolute multiples of `rebase` only, the
  * same times as the serial reference (rebase_auto = 0), so that both round alike:
@@ -121,6 +123,8 @@ typedef struct {
 	double t;       /* absolute time */
 	uint32_t i, j;  /* particles (j = i for one-particle events; i < j for collisions) */
 	uint32_t kind;
+	uint32_t cell;  /* the cell of the noting rank's particle after the event: where
+	                   the work was done, for the load of lz_pedmd_rebalance */
 } lz_pedmd_record;
 
 /* The first version, in this window, of one particle on this rank. */
@@ -149,7 +153,9 @@ typedef struct {
 	double window;      /* the first window's length (> 0); it adapts: x2 after a
 	                       commit, /2 after a rollback, within [window/64, 64 window] */
 	double rebase;      /* re-base the clock at absolute multiples of this (> 0) */
-	int balance;        /* rebalance every this many windows (0: never) */
+	int balance;        /* rebalance every this many windows: only 0 (never) for now;
+	                       the cuts can be balanced from a pilot run's load instead
+	                       (lz_pedmd_sim_load, lz_pedmd_rebalance, lz_pedmd_sim_alloc_cut) */
 	double threshold;   /* ... when the largest load improves by this fraction */
 	int log;            /* 1: keep the committed events (lz_pedmd_log) */
 	int work;           /* events per turn of the work function (> 0) */
@@ -205,7 +211,9 @@ typedef struct lz_pedmd {
 	size_t nwlog, capwlog, nclog, capclog;
 	uint64_t wcommit;             /* events of this window it would commit */
 	double wvirial;               /* and their virial */
-	double *load;                 /* per cell: committed events since the last balance */
+	double *load;                 /* per cell: committed events noted with that cell */
+	int nomem;                    /* 1: the window log could not grow (lz_pedmd_work
+	                                 then fails with LZ_ENOMEM) */
 	lz_pedmd_counts counts;
 	/* the protocol (pedmd_lib.c) */
 	int phase;                    /* LZ_PEDMD_BEGIN .. LZ_PEDMD_DONE */
@@ -304,7 +312,8 @@ int lz_pedmd_announce(lz_pedmd *r, uint32_t i, uint32_t from, int to_owner, doub
 int lz_pedmd_late(lz_pedmd *r, double t);
 
 /* An event (relative time t) this window will commit, if it commits: counted (with a
- * collision's virial), and appended to the window's log when the run keeps one. */
+ * collision's virial, and in the load of particle i's cell) and appended to the
+ * window's log (no memory: r->nomem, and lz_pedmd_work fails). */
 void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
                    double virial);
 
@@ -380,6 +389,10 @@ typedef struct {
  * lz_error on a bad parameter (naming its range) or no memory. O(P (N + cells)). */
 lz_pedmd_sim *lz_pedmd_sim_alloc(const lz_edmd *s, int kind, const lz_stub_params *sp,
                                  const lz_pedmd_params *pp);
+/* The same with the cuts cut[0 .. P] (0 = cut[0] < ... < cut[P] = the cells; NULL:
+ * even cuts), e.g. from lz_pedmd_rebalance of a pilot run's load. */
+lz_pedmd_sim *lz_pedmd_sim_alloc_cut(const lz_edmd *s, int kind, const uint32_t *cut,
+                                     const lz_stub_params *sp, const lz_pedmd_params *pp);
 void lz_pedmd_sim_free(lz_pedmd_sim *x);
 
 /* Run every rank to t_stop (absolute, later than where they are): LZ_OK, the first
@@ -390,12 +403,17 @@ int lz_pedmd_sim_run(lz_pedmd_sim *x, double t_stop);
  * grid; its cells are not updated): the serial picture of the run. */
 void lz_pedmd_sim_gather(const lz_pedmd_sim *x, lz_edmd *out);
 
+/* The committed events of every cell, all ranks together, into load[0 .. cells-1]. */
+void lz_pedmd_sim_load(const lz_pedmd_sim *x, double *load);
+
 /* The counters of all ranks summed (saved_bytes: the largest). */
 lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x);
 
 /* Every rank's committed events in one array (malloc'd, the caller frees it), sorted
- * by time, then i, then j: the serial run's event log when params.log was 1. NULL
- * with *n = 0 when there are none or no memory. */
+ * by time, then i, j and kind (lz_pedmd_record_order): the serial run's event log,
+ * sorted alike, when params.log was 1. NULL with *n = 0 when there are none or no
+ * memory. */
+int lz_pedmd_record_order(const void *a, const void *b);
 lz_pedmd_record *lz_pedmd_sim_log(const lz_pedmd_sim *x, size_t *n);
 
 #endif
