@@ -114,14 +114,13 @@ int lz_pedmd_decide(double t_error, double T, double t_next, double *t_end)
 	LZ_TODO();
 }
 
-
 int lz_pedmd_rebalance(const lz_pedmd_domains *d, const double *load, double threshold,
                        uint32_t *new_cut)
 {
 	/* Hint: walk the curve adding load[curve[k]]; cut r goes where the running total
 	 * first passes r/P of the whole, but never so that a rank is left without a cell
-	 * (cut[r] >= cut[r-1] + 1 and <= ncells - (P - r)). Compare the largest rank
-	 * load before and after; keep the old cuts unless the new largest is at most
-	 * (1 - threshold) of the old. See §8. */
+	 * (cut[r] >= cut[r-1] + 1 and <= ncells - (P - r)). Compare the busiest rank's
+	 * load before and after (lz_pedmd_busiest); keep the old cuts unless the new one
+	 * is at most (1 - threshold) of the old. See §8. */
 	LZ_TODO();
 }

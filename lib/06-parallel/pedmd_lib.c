@@ -85,6 +85,18 @@ void lz_pedmd_domains_free(lz_pedmd_domains *d)
 	free(d);
 }
 
+double lz_pedmd_busiest(const lz_pedmd_domains *d, const double *load, const uint32_t *cut)
+{
+	double most = 0;
+	for (int r = 0; r < d->P; r++) {
+		double sum = 0;
+		for (uint32_t k = cut[r]; k < cut[r + 1]; k++)
+			sum += load[d->curve[k]];
+		most = sum > most ? sum : most;
+	}
+	return most;
+}
+
 /* ---- a rank: set-up ---- */
 
 static int check_params(const lz_pedmd_params *p)

@@ -180,3 +180,14 @@ lz_pedmd_record *lz_pedmd_sim_log(const lz_pedmd_sim *x, size_t *n)
 	qsort(all, total, sizeof *all, lz_pedmd_record_order);
 	return all;
 }
+
+int lz_pedmd_serial(lz_edmd *e, double t_stop, double rebase)
+{
+	for (double T = (floor(lz_edmd_time(e) / rebase) + 1) * rebase;; T += rebase) {
+		double stop = fmin(T, t_stop);
+		int st = lz_edmd_run(e, UINT64_MAX, stop);
+		if (st != LZ_OK || stop >= t_stop)
+			return st;
+		lz_edmd_rebase(e);
+	}
+}

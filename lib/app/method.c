@@ -12,6 +12,7 @@ static const lz_method *const lz_registry[] = {
 	&lz_method_field,
 	&lz_method_nlist,
 	&lz_method_edmd,
+	&lz_method_pedmd,
 };
 
 const lz_method *lz_method_find(const char *name)

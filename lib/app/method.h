@@ -80,5 +80,6 @@ extern const lz_method lz_method_lattice_gas;
 extern const lz_method lz_method_field;
 extern const lz_method lz_method_nlist;
 extern const lz_method lz_method_edmd;
+extern const lz_method lz_method_pedmd;
 
 #endif

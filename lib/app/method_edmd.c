@@ -29,36 +29,19 @@
 #include "lz/edmd_obs.h"
 #include "lz/error.h"
 #include "config.h"
+#include "edmd_scene.h"
 #include "method.h"
 #include "lz/progress.h"
 #include "lz/rng.h"
 #include "lz/timer.h"
 
 enum { OBS_GR = 1, OBS_MSD = 2 };
-enum { WALLS_NONE, WALLS_X, WALLS_BOX };  /* the order of the walls choices */
 #define DEFAULT_EVENTS 100.0  /* events per particle when neither events nor time */
 #define PLOT_DISKS 20000.0    /* about this many circles at most in config.png */
 #define PROGRESS_EVENTS 256   /* events between progress updates (on a terminal) */
 
 static const lz_key keys[] = {
-	{.name = "dim", .type = LZ_KEY_INT, .def = "3", .min = 2, .max = 3,
-	 .help = "3: hard spheres; 2: hard disks"},
-	{.name = "n", .type = LZ_KEY_INT, .def = "1000", .min = 1, .max = 1e9,
-	 .help = "particles, any number (a lattice start fills a random subset of its "
-	         "sites); with " "config, the file's rows"},
-	{.name = "packing", .type = LZ_KEY_REAL, .def = "0.3", .min = 0,
-	 .max = LZ_EDMD_CLOSE_2D, .min_open = 1, .max_open = 1,
-	 .help = "packing fraction η = n·v1/L^dim (v1 = π/6, π/4), which sets the box side "
-	         "L; below " "close packing, 0.7405 (spheres) and 0.9069 (disks)"},
-	{.name = "restitution", .type = LZ_KEY_REAL, .def = "1", .min = 0, .max = 1,
-	 .min_open = 1,
-	 .help = "normal restitution between particles (walls are elastic); below 1 the "
-	         "gas cools " "(Haff's law), clusters, and may collapse"},
-	{.name = "gravity", .type = LZ_KEY_REAL, .def = "0", .max = 1e6, .unit = "σ/τ²",
-	 .help = "acceleration g along -x (needs walls = x or box)"},
-	{.name = "walls", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|x|box",
-	 .help = "hard elastic walls at x = 0 and L (x) or on every axis (box); none: "
-	         "periodic"},
+	LZ_EDMD_SYSTEM_KEYS,
 	{.name = "events", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e9, .min_open = 1,
 	 .unit = "per particle",
 	 .help = "events per particle measured, in blocks of equal events (give events or "
@@ -66,16 +49,8 @@ static const lz_key keys[] = {
 	{.name = "time", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e9, .min_open = 1,
 	 .unit = "τ",
 	 .help = "simulated time measured, in blocks of equal duration (give events or time)"},
-	{.name = "equilibrate", .type = LZ_KEY_REAL, .def = "50", .max = 1e9,
-	 .unit = "per particle",
-	 .help = "events per particle run first and discarded, elastic whatever the "
-	         "restitution"},
 	{.name = "blocks", .type = LZ_KEY_INT, .def = "20", .min = 2, .max = 1e6,
 	 .help = "blocks of the error bars (the standard error of the block means)"},
-	{.name = "cells", .type = LZ_KEY_INT, .def = "0", .max = 1e5, .unit = "per side",
-	 .help = "cells per side, each at least σ wide, >= 3 on a periodic axis; 0: "
-	         "automatic (about "
-	         "1.5 per particle in 2D, 8 in 3D, as many as fit when dense)"},
 	{.name = "observe", .type = LZ_KEY_TEXT, .def = "pressure",
 	 .help = "a comma list of gr, msd (pressure and the collision rate are always "
 	         "measured, " "from counters; pressure or none alone: nothing more)"},
@@ -87,11 +62,6 @@ static const lz_key keys[] = {
 	{.name = "sample", .type = LZ_KEY_REAL, .def = "2", .min = 0, .max = 1e9, .min_open = 1,
 	 .unit = "per particle",
 	 .help = "events per particle between g(r) samples, msd rows and temperature rows"},
-	{.name = "config", .type = LZ_KEY_TEXT, .def = "",
-	 .help = "file of rows x y [z] [vx vy [vz]] (σ, σ/τ; '#' comments): the initial "
-	         "state instead "
-	         "of a lattice, n = its rows, positions in [0, L); no velocities: Maxwell, "
-	         "kT = 1"},
 	{.name = "sort", .type = LZ_KEY_BOOL, .def = "no",
 	 .help = "renumber the particles cell by cell at every re-base (near in space = "
 	         "near in "
@@ -99,8 +69,6 @@ static const lz_key keys[] = {
 	         "with " "observe = msd"},
 	{.name = "write_config", .type = LZ_KEY_BOOL, .def = "yes",
 	 .help = "write config.dat (the final state, readable as config) and config.png"},
-	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto",
-	 .help = "random seed of the lattice sites and the velocities"},
 };
 
 /* ---- the scene ---- */
@@ -140,72 +108,9 @@ static int scene_observe(const lz_scene *s)
 /* ---- the system ---- */
 
 /* The particles: the config file's rows, else n. */
-static int particles_of(const lz_scene *s, const lz_config *c, size_t *n)
-{
-	if (!lz_scene_has(s, "config")) {
-		*n = (size_t)lz_scene_int(s, "n");
-		return LZ_OK;
-	}
-	if (lz_scene_given(s, "n") && (size_t)lz_scene_int(s, "n") != c->n)
-		return lz_scene_fail(s, "n", "n = %lld but the config file '%s' has %zu rows: leave "
-		                     "n out, the file sets it", lz_scene_int(s, "n"),
-		                     lz_scene_text(s, "config"), c->n);
-	*n = c->n;
-	return LZ_OK;
-}
 
-static lz_edmd_params scene_params(const lz_scene *s, size_t n)
-{
-	static const int walls[] = {LZ_EDMD_WALLS_NONE, LZ_EDMD_WALLS_X, LZ_EDMD_WALLS_BOX};
-	lz_edmd_params p = {
-		.dim = (int)lz_scene_int(s, "dim"),
-		.n = n,
-		.packing = lz_scene_real(s, "packing"),
-		.restitution = lz_scene_real(s, "restitution"),
-		.gravity = lz_scene_real(s, "gravity"),
-		.walls = walls[lz_scene_enum(s, "walls")],
-		.cells = (int)lz_scene_int(s, "cells"),
-	};
-	return p;
-}
 
-/* The system of the scene (not yet placed), or NULL with the library's message at the
- * key to blame. */
-static lz_edmd *scene_system(const lz_scene *s, size_t n)
-{
-	lz_edmd_params p = scene_params(s, n);
-	lz_edmd *e = lz_edmd_alloc(&p);
-	if (e)
-		return e;
-	double close = p.dim == 3 ? LZ_EDMD_CLOSE_3D : LZ_EDMD_CLOSE_2D;
-	const char *key = p.packing >= close ? "packing"
-	                  : p.gravity > 0 && p.walls == LZ_EDMD_WALLS_NONE ? "gravity"
-	                  : lz_scene_given(s, "cells") ? "cells"
-	                  : lz_scene_has(s, "config") ? "config" : "n";
-	lz_scene_fail(s, key, "%s", lz_error_message());
-	return NULL;
-}
 
-/* Place the config file's particles (velocities from the file or Maxwell's);
- * lz_edmd_set checks the box, the walls, the numbers and the overlaps. */
-static int place_config(const lz_scene *s, lz_edmd *e, const lz_config *c, lz_rng *rng)
-{
-	double *v = c->v;
-	if (!c->velocities) {
-		v = malloc(3 * c->n * sizeof *v);
-		if (!v)
-			return lz_error(LZ_ENOMEM, "no memory for %zu velocities", c->n);
-		lz_edmd_maxwell(e, rng, v);
-	}
-	int status = lz_edmd_set(e, c->r, v);
-	if (v != c->v)
-		free(v);
-	if (status != LZ_OK)
-		return lz_scene_fail(s, "config", "config file '%s' (particle k is its row k, "
-		                     "from 0; the box side is L = %.10g σ): %s",
-		                     lz_scene_text(s, "config"), e->L, lz_error_message());
-	return LZ_OK;
-}
 
 /* events and time, observe and its keys, sort. */
 static int check_keys(const lz_scene *s)
@@ -240,8 +145,8 @@ static int check(const lz_scene *s)
 	if (lz_scene_has(s, "config") && lz_config_read(lz_scene_text(s, "config"), dim, &c))
 		return lz_scene_fail(s, "config", "%s", lz_error_message());
 	size_t n = 0;
-	status = particles_of(s, &c, &n);
-	lz_edmd *e = status == LZ_OK ? scene_system(s, n) : NULL;
+	status = lz_edmd_scene_particles(s, &c, &n);
+	lz_edmd *e = status == LZ_OK ? lz_edmd_scene_system(s, n) : NULL;
 	if (status == LZ_OK && !e)
 		status = LZ_EINVAL;
 	if (status == LZ_OK && (scene_observe(s) & OBS_GR) && lz_scene_real(s, "gr_range") > e->L / 2)
@@ -250,7 +155,7 @@ static int check(const lz_scene *s)
 		                       e->L / 2, e->L / 2);
 	if (status == LZ_OK && c.n > 0) {
 		lz_rng *rng = lz_rng_alloc(NULL, 1);
-		status = rng ? place_config(s, e, &c, rng) : LZ_ENOMEM;
+		status = rng ? lz_edmd_scene_place_config(s, e, &c, rng) : LZ_ENOMEM;
 		lz_rng_free(rng);
 	}
 	lz_edmd_free(e);
@@ -418,48 +323,7 @@ static int watch_begin(const lz_scene *s, lz_edmd *e, const lz_run *run, watch *
 
 /* ---- the run ---- */
 
-/* The system placed: from the config file or a lattice. */
-static int start(const lz_scene *s, lz_edmd *e, lz_rng *rng)
-{
-	if (lz_scene_has(s, "config")) {
-		lz_config c;
-		int status = lz_config_read(lz_scene_text(s, "config"), e->dim, &c);
-		if (status == LZ_OK)
-			status = place_config(s, e, &c, rng);
-		lz_config_free(&c);
-		return status;
-	}
-	if (lz_edmd_place_lattice(e, rng) != LZ_OK)
-		return lz_scene_fail(s, lz_scene_given(s, "n") ? "n" : "packing", "%s",
-		                     lz_error_message());
-	return LZ_OK;
-}
 
-/* Equilibration: elastic, in pieces for the progress line on a terminal; then the clock
- * reads 0. */
-static int equilibrate(const lz_scene *s, lz_edmd *e, int quiet)
-{
-	double restitution = e->restitution;
-	uint64_t total = (uint64_t)llround(lz_scene_real(s, "equilibrate") * (double)e->n);
-	uint64_t piece = quiet ? total : PROGRESS_EVENTS, done = 0;
-	lz_progress bar;
-	if (!quiet)
-		lz_progress_begin(&bar, "edmd equilibrate", (double)total);
-	e->restitution = 1;
-	int status = LZ_OK;
-	while (status == LZ_OK && done < total) {
-		uint64_t k = total - done < piece ? total - done : piece;
-		status = lz_edmd_run(e, k, INFINITY);
-		done += k;
-		if (!quiet)
-			lz_progress_update(&bar, (double)done);
-	}
-	if (!quiet)
-		lz_progress_end(&bar);
-	e->restitution = restitution;
-	lz_edmd_set_time(e, 0);
-	return status;
-}
 
 /* The measurement: blocks of events or of time, watched when anything is asked for. */
 static int measure(const lz_scene *s, lz_edmd *e, watch *w, lz_edmd_result *r)
@@ -752,20 +616,20 @@ static int run(const lz_scene *s, lz_run *run)
 	if (lz_scene_has(s, "config"))
 		status = lz_config_read(lz_scene_text(s, "config"), (int)lz_scene_int(s, "dim"), &c);
 	if (status == LZ_OK)
-		status = particles_of(s, &c, &n);
+		status = lz_edmd_scene_particles(s, &c, &n);
 	lz_config_free(&c);
-	lz_edmd *e = status == LZ_OK ? scene_system(s, n) : NULL;
+	lz_edmd *e = status == LZ_OK ? lz_edmd_scene_system(s, n) : NULL;
 	if (status == LZ_OK && !e)
 		status = LZ_EINVAL;
 	watch w = {0};
 	lz_edmd_result r = {0};
 	if (status == LZ_OK) {
 		e->sort_every = lz_scene_bool(s, "sort") ? 1 : 0;
-		status = start(s, e, rng);
+		status = lz_edmd_scene_start(s, e, rng);
 	}
 	double setup_s = lz_cpu_now() - t0;
 	if (status == LZ_OK)
-		status = equilibrate(s, e, run->quiet);
+		status = lz_edmd_scene_equilibrate(s, e, run->quiet);
 	if (status == LZ_OK) {
 		if (scene_observe(s) & OBS_MSD)
 			e->sort_every = 0;  /* the track follows particle numbers */

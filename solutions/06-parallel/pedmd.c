@@ -409,29 +409,14 @@ int lz_pedmd_decide(double t_error, double T, double t_next, double *t_end)
 	/* LZ_SOLUTION_END */
 }
 
-/* LZ_HELPERS_BEGIN */
-/* The largest rank load of cuts `cut`. */
-static double largest(const lz_pedmd_domains *d, const double *load, const uint32_t *cut)
-{
-	double most = 0;
-	for (int r = 0; r < d->P; r++) {
-		double sum = 0;
-		for (uint32_t k = cut[r]; k < cut[r + 1]; k++)
-			sum += load[d->curve[k]];
-		most = sum > most ? sum : most;
-	}
-	return most;
-}
-/* LZ_HELPERS_END */
-
 int lz_pedmd_rebalance(const lz_pedmd_domains *d, const double *load, double threshold,
                        uint32_t *new_cut)
 {
 	/* Hint: walk the curve adding load[curve[k]]; cut r goes where the running total
 	 * first passes r/P of the whole, but never so that a rank is left without a cell
-	 * (cut[r] >= cut[r-1] + 1 and <= ncells - (P - r)). Compare the largest rank
-	 * load before and after; keep the old cuts unless the new largest is at most
-	 * (1 - threshold) of the old. See §8. */
+	 * (cut[r] >= cut[r-1] + 1 and <= ncells - (P - r)). Compare the busiest rank's
+	 * load before and after (lz_pedmd_busiest); keep the old cuts unless the new one
+	 * is at most (1 - threshold) of the old. See §8. */
 	/* LZ_SOLUTION_BEGIN */
 	int P = d->P;
 	double total = 0;
@@ -454,7 +439,8 @@ int lz_pedmd_rebalance(const lz_pedmd_domains *d, const double *load, double thr
 		while (k < c)
 			run += load[d->curve[k++]];
 	}
-	if (total > 0 && largest(d, load, new_cut) <= (1 - threshold) * largest(d, load, d->cut))
+	double before = lz_pedmd_busiest(d, load, d->cut);
+	if (total > 0 && lz_pedmd_busiest(d, load, new_cut) <= (1 - threshold) * before)
 		return 1;
 	memcpy(new_cut, d->cut, (size_t)(P + 1) * sizeof *new_cut);
 	return 0;

@@ -328,6 +328,10 @@ int lz_pedmd_grow(void **v, size_t *cap, size_t n, size_t size);
  * O(waiting messages). */
 int lz_pedmd_begin(lz_pedmd *r, double t_end);
 
+/* The load of the busiest rank under cuts cut[0 .. P]: the most, over the ranks, of
+ * the sum of load[] over the cells of its run of the curve. O(ncells). */
+double lz_pedmd_busiest(const lz_pedmd_domains *d, const double *load, const uint32_t *cut);
+
 /* Queue message m until the rank's clock reaches it. LZ_OK or LZ_ENOMEM. */
 int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m);
 
@@ -402,6 +406,11 @@ int lz_pedmd_sim_run(lz_pedmd_sim *x, double t_stop);
 /* The owned particles of every rank, written into out (a system of the same N and
  * grid; its cells are not updated): the serial picture of the run. */
 void lz_pedmd_sim_gather(const lz_pedmd_sim *x, lz_edmd *out);
+
+/* The serial reference of a parallel run: run e (rebase_auto = 0) to t_stop
+ * (absolute), re-based at the multiples of `rebase` as the ranks are, so that both
+ * round alike. LZ_OK or lz_edmd_run's error. O(events log N). */
+int lz_pedmd_serial(lz_edmd *e, double t_stop, double rebase);
 
 /* The committed events of every cell, all ranks together, into load[0 .. cells-1]. */
 void lz_pedmd_sim_load(const lz_pedmd_sim *x, double *load);

@@ -1,0 +1,121 @@
+/* edmd_scene.c — the system of an event-driven scene (edmd_scene.h): its size and box
+ * from the keys, its start from a config file or a lattice, its equilibration. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "lz/error.h"
+#include "lz/progress.h"
+#include "config.h"
+#include "edmd_scene.h"
+
+#define PROGRESS_EVENTS 256  /* events between progress updates (on a terminal) */
+
+int lz_edmd_scene_particles(const lz_scene *s, const lz_config *c, size_t *n)
+{
+	if (!lz_scene_has(s, "config")) {
+		*n = (size_t)lz_scene_int(s, "n");
+		return LZ_OK;
+	}
+	if (lz_scene_given(s, "n") && (size_t)lz_scene_int(s, "n") != c->n)
+		return lz_scene_fail(s, "n", "n = %lld but the config file '%s' has %zu rows: leave "
+		                     "n out, the file sets it", lz_scene_int(s, "n"),
+		                     lz_scene_text(s, "config"), c->n);
+	*n = c->n;
+	return LZ_OK;
+}
+
+static lz_edmd_params scene_params(const lz_scene *s, size_t n)
+{
+	static const int walls[] = {LZ_EDMD_WALLS_NONE, LZ_EDMD_WALLS_X, LZ_EDMD_WALLS_BOX};
+	lz_edmd_params p = {
+		.dim = (int)lz_scene_int(s, "dim"),
+		.n = n,
+		.packing = lz_scene_real(s, "packing"),
+		.restitution = lz_scene_real(s, "restitution"),
+		.gravity = lz_scene_real(s, "gravity"),
+		.walls = walls[lz_scene_enum(s, "walls")],
+		.cells = (int)lz_scene_int(s, "cells"),
+	};
+	return p;
+}
+
+/* The system of the scene (not yet placed), or NULL with the library's message at the
+ * key to blame. */
+lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n)
+{
+	lz_edmd_params p = scene_params(s, n);
+	lz_edmd *e = lz_edmd_alloc(&p);
+	if (e)
+		return e;
+	double close = p.dim == 3 ? LZ_EDMD_CLOSE_3D : LZ_EDMD_CLOSE_2D;
+	const char *key = p.packing >= close ? "packing"
+	                  : p.gravity > 0 && p.walls == LZ_EDMD_WALLS_NONE ? "gravity"
+	                  : lz_scene_given(s, "cells") ? "cells"
+	                  : lz_scene_has(s, "config") ? "config" : "n";
+	lz_scene_fail(s, key, "%s", lz_error_message());
+	return NULL;
+}
+
+/* Place the config file's particles (velocities from the file or Maxwell's);
+ * lz_edmd_set checks the box, the walls, the numbers and the overlaps. */
+int lz_edmd_scene_place_config(const lz_scene *s, lz_edmd *e, const lz_config *c, lz_rng *rng)
+{
+	double *v = c->v;
+	if (!c->velocities) {
+		v = malloc(3 * c->n * sizeof *v);
+		if (!v)
+			return lz_error(LZ_ENOMEM, "no memory for %zu velocities", c->n);
+		lz_edmd_maxwell(e, rng, v);
+	}
+	int status = lz_edmd_set(e, c->r, v);
+	if (v != c->v)
+		free(v);
+	if (status != LZ_OK)
+		return lz_scene_fail(s, "config", "config file '%s' (particle k is its row k, "
+		                     "from 0; the box side is L = %.10g σ): %s",
+		                     lz_scene_text(s, "config"), e->L, lz_error_message());
+	return LZ_OK;
+}
+
+/* The system placed: from the config file or a lattice. */
+int lz_edmd_scene_start(const lz_scene *s, lz_edmd *e, lz_rng *rng)
+{
+	if (lz_scene_has(s, "config")) {
+		lz_config c;
+		int status = lz_config_read(lz_scene_text(s, "config"), e->dim, &c);
+		if (status == LZ_OK)
+			status = lz_edmd_scene_place_config(s, e, &c, rng);
+		lz_config_free(&c);
+		return status;
+	}
+	if (lz_edmd_place_lattice(e, rng) != LZ_OK)
+		return lz_scene_fail(s, lz_scene_given(s, "n") ? "n" : "packing", "%s",
+		                     lz_error_message());
+	return LZ_OK;
+}
+
+/* Equilibration: elastic, in pieces for the progress line on a terminal; then the clock
+ * reads 0. */
+int lz_edmd_scene_equilibrate(const lz_scene *s, lz_edmd *e, int quiet)
+{
+	double restitution = e->restitution;
+	uint64_t total = (uint64_t)llround(lz_scene_real(s, "equilibrate") * (double)e->n);
+	uint64_t piece = quiet ? total : PROGRESS_EVENTS, done = 0;
+	lz_progress bar;
+	if (!quiet)
+		lz_progress_begin(&bar, "edmd equilibrate", (double)total);
+	e->restitution = 1;
+	int status = LZ_OK;
+	while (status == LZ_OK && done < total) {
+		uint64_t k = total - done < piece ? total - done : piece;
+		status = lz_edmd_run(e, k, INFINITY);
+		done += k;
+		if (!quiet)
+			lz_progress_update(&bar, (double)done);
+	}
+	if (!quiet)
+		lz_progress_end(&bar);
+	e->restitution = restitution;
+	lz_edmd_set_time(e, 0);
+	return status;
+}
