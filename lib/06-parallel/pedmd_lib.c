@@ -544,8 +544,12 @@ static int receive(lz_pedmd *r)
 		if (n != sizeof m)
 			return lz_error(LZ_EDOM, "rank %d got a message of %zu bytes from rank %d, not "
 			                "%zu", r->rank, n, from, sizeof m);
-		if (r->t_error == INFINITY && (st = lz_pedmd_apply(r, &m)) != LZ_OK)
+		if (r->t_error != INFINITY)
+			continue;
+		int late = m.t < r->clock;
+		if ((st = lz_pedmd_apply(r, &m)) != LZ_OK)
 			return st;
+		r->counts.late_harmless += late && r->t_error == INFINITY;
 	}
 	return st;
 }

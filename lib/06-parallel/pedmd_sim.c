@@ -127,25 +127,28 @@ void lz_pedmd_sim_load(const lz_pedmd_sim *x, double *load)
 			load[c] += x->rank[k]->load[c];
 }
 
+void lz_pedmd_counts_add(lz_pedmd_counts *s, const lz_pedmd_counts *c)
+{
+	s->processed += c->processed;
+	s->committed += c->committed;
+	s->windows = c->windows;  /* the same on every rank */
+	s->rollbacks = c->rollbacks;
+	s->conservative = c->conservative;
+	s->balances = c->balances;
+	s->late_harmless += c->late_harmless;
+	s->saved_bytes = c->saved_bytes > s->saved_bytes ? c->saved_bytes : s->saved_bytes;
+	s->collisions += c->collisions;
+	s->crossings += c->crossings;
+	s->bounces += c->bounces;
+	s->stale += c->stale;
+	s->virial += c->virial;
+}
+
 lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x)
 {
 	lz_pedmd_counts s = {0};
-	for (int k = 0; k < x->P; k++) {
-		lz_pedmd_counts c = x->rank[k]->counts;
-		s.processed += c.processed;
-		s.committed += c.committed;
-		s.windows = c.windows;  /* the same on every rank */
-		s.rollbacks = c.rollbacks;
-		s.conservative = c.conservative;
-		s.balances = c.balances;
-		s.late_harmless += c.late_harmless;
-		s.saved_bytes = c.saved_bytes > s.saved_bytes ? c.saved_bytes : s.saved_bytes;
-		s.collisions += c.collisions;
-		s.crossings += c.crossings;
-		s.bounces += c.bounces;
-		s.stale += c.stale;
-		s.virial += c.virial;
-	}
+	for (int k = 0; k < x->P; k++)
+		lz_pedmd_counts_add(&s, &x->rank[k]->counts);
 	return s;
 }
 

@@ -3,7 +3,8 @@
 # the committed assignments must be current, the stub audit and the grader
 # fixtures must pass, a realistic bug in every graded function must fail the tests
 # that call it (one mutant each; `make mutants` runs them all), and the handout must
-# work along the student's path (make test, make submit, make grade). Usage: check.sh BUILD "STAGES"
+# work along the student's path (make test, make submit, make grade), and lz-mpi must
+# equal the serial run on 1 to 4 processes (skipped without MPI). Usage: check.sh BUILD "STAGES"
 set -uo pipefail
 build=$1
 stages=$2
@@ -64,6 +65,7 @@ step "stub audit" bash tests/grade/audit.sh "$build" "$stages"
 step "grader fixtures" bash tests/grade/fixtures.sh "$build"
 step "mutants, one per graded function" bash tests/grade/mutants.sh "$build" --sample
 step "handout and the student's path" bash lib/tools/handout.sh "$build"
+step "MPI back-end (lz-mpi, P = 1..4)" bash tests/mpi/check.sh "$build"
 
 echo
 if [ ${#failures[@]} -ne 0 ]; then

@@ -417,6 +417,11 @@ void lz_pedmd_sim_load(const lz_pedmd_sim *x, double *load);
 
 /* The counters of all ranks summed (saved_bytes: the largest). */
 lz_pedmd_counts lz_pedmd_sim_counts(const lz_pedmd_sim *x);
+/* ... one rank's counters c added into s, as above: the events, kinds, late messages
+ * and virial summed, saved_bytes the largest, and the protocol's own counts (windows,
+ * rollbacks, conservative steps, balances: the same on every rank) taken from c. For
+ * the counters of ranks in other processes (lz-mpi). O(1). */
+void lz_pedmd_counts_add(lz_pedmd_counts *s, const lz_pedmd_counts *c);
 
 /* Every rank's committed events in one array (malloc'd, the caller frees it), sorted
  * by time, then i, j and kind (lz_pedmd_record_order): the serial run's event log,

@@ -1,0 +1,342 @@
+/* lz_mpi.c — the program lz-mpi: a `method = pedmd` scene with one process per rank.
+ *
+ *   mpirun -np P lz-mpi SCENE [key=value ...]
+ *
+ * Every process reads the scene, applies the overrides and binds the pedmd keys; the
+ * seed that rank 0 drew for seed = auto is everyone's, so every process builds and
+ * equilibrates the same system, bit for bit (lz_pedmd_scene_make). The P processes
+ * are the ranks (a scene's `ranks` must agree, or be left out); each runs its domain
+ * over the MPI back-end (lz/msg_mpi.h) until t_stop. Then rank 0 gathers the owned
+ * particles into its copy of the system, sums the counters, prints a short report
+ * (stdout) and, with check = yes, runs the serial reference and compares bit for bit.
+ * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here;
+ * balance = pilot is refused (not done under MPI yet).
+ *
+ * Exit status, the same on every process: 0 success; 1 the run failed or differs from
+ * the serial run; 2 bad input (usage, scene file, key, value, ranks). A failure while
+ * the processes are set up is agreed on collectively (an MPI_Allreduce of the status:
+ * the first failing rank says why, every process exits); one inside the run, where the
+ * others would wait for it forever, prints its message and calls MPI_Abort.
+ */
+#include <sched.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <mpi.h>
+
+#include "lz/edmd.h"
+#include "lz/error.h"
+#include "lz/msg_mpi.h"
+#include "lz/pedmd.h"
+#include "method.h"
+#include "pedmd_scene.h"
+#include "scene.h"
+
+enum { USAGE = -1 };  /* a usage error: the message, then the usage line */
+
+/* One gathered particle. */
+typedef struct {
+	uint32_t id, pad;
+	lz_edmd_particle p;
+} particle_record;
+
+/* The code of the last lz_error: lz_scene_read reports failure with NULL. The
+ * messages are printed once, by the rank that speaks for all (lz_error_message). */
+static int last_code;
+static void record(int code, const char *message) { last_code = code; }
+
+static int exit_status(int st)
+{
+	return st == LZ_OK ? 0 : st == USAGE || st == LZ_EINVAL || st == LZ_ESYNTAX ? 2 : 1;
+}
+
+/* Every process has status st: the first failing rank (size when none) says why and
+ * gets everyone's status from it in *agreed. */
+static int agree(int st, int rank, int size, int *agreed)
+{
+	int me = st != LZ_OK ? rank : size, first;
+	MPI_Allreduce(&me, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+	*agreed = st;
+	if (first == size)
+		return 0;
+	MPI_Bcast(agreed, 1, MPI_INT, first, MPI_COMM_WORLD);
+	if (rank == first) {
+		if (rank != 0)
+			fprintf(stderr, "lz-mpi: rank %d: %s\n", rank, lz_error_message());
+		else
+			fprintf(stderr, "lz-mpi: %s\n", lz_error_message());
+		if (st == USAGE)
+			fputs("usage: mpirun -np P lz-mpi SCENE [key=value ...]\n", stderr);
+	}
+	return 1;
+}
+
+/* A failure inside the run: the others cannot be told, only stopped. (The engine's
+ * messages mostly name the rank themselves.) */
+static _Noreturn void abort_run(int rank, int st)
+{
+	const char *msg = lz_error_message();
+	if (strncmp(msg, "rank ", 5) == 0)
+		fprintf(stderr, "lz-mpi: %s\n", msg);
+	else
+		fprintf(stderr, "lz-mpi: rank %d: %s\n", rank, msg);
+	MPI_Abort(MPI_COMM_WORLD, exit_status(st));
+	exit(exit_status(st));  /* not reached */
+}
+
+/* The scene of argv, overridden, bound to the pedmd keys with `ranks` = size unless
+ * it says otherwise. Local: every process does the same. */
+static int load(int argc, char **argv, int size, lz_scene **sp)
+{
+	if (argc < 2)
+		return lz_error(LZ_EINVAL, "lz-mpi needs a scene"), USAGE;
+	lz_scene *s = *sp = lz_scene_read(argv[1]);
+	if (!s)
+		return last_code;
+	int st;
+	for (int i = 2; i < argc; i++) {
+		if (!strchr(argv[i], '='))
+			return lz_error(LZ_EINVAL, "unexpected argument '%s' (after SCENE come "
+			                "key=value overrides)", argv[i]), USAGE;
+		if ((st = lz_scene_set(s, argv[i], "command line")) != LZ_OK)
+			return st;
+	}
+	const char *method = lz_scene_method(s);
+	if (!method || strcmp(method, lz_method_pedmd.name) != 0)
+		return lz_error(LZ_EINVAL, "%s: method = %s; lz-mpi runs the scenes of method "
+		                "pedmd only", argv[1], method ? method : "(none)");
+	char ranks[32];
+	snprintf(ranks, sizeof ranks, "ranks=%d", size);
+	if (!lz_scene_given(s, "ranks") && (st = lz_scene_set(s, ranks, "mpirun -np")) != LZ_OK)
+		return st;
+	return lz_method_bind(&lz_method_pedmd, s);
+}
+
+/* Rank 0's seeds for every process (seed = auto draws one per process), logged as
+ * `lz run` does; the scene is bound again with them. */
+static int share_seeds(lz_scene *s, int rank)
+{
+	const lz_key_table *t = &lz_method_pedmd.keys;
+	int changed = 0;
+	for (size_t i = 0; i < t->n; i++) {
+		const char *key = t->key[i].name;
+		if (t->key[i].type != LZ_KEY_SEED)
+			continue;
+		unsigned long seed = lz_scene_seed(s, key);
+		if (rank == 0 && strcmp(lz_scene_text(s, key), "auto") == 0)
+			fprintf(stderr, "lz-mpi: %s = %lu (auto); pass %s=%lu to repeat this run\n", key,
+			        seed, key, seed);
+		MPI_Bcast(&seed, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+		char set[128];
+		snprintf(set, sizeof set, "%s=%lu", key, seed);
+		int st = lz_scene_set(s, set, "rank 0");
+		if (st != LZ_OK)
+			return st;
+		changed = 1;
+	}
+	return changed ? lz_method_bind(&lz_method_pedmd, s) : LZ_OK;
+}
+
+/* What only lz-mpi refuses, then the system (the same bits on every process). */
+static int make(lz_scene *s, int rank, int size, lz_pedmd_scene *p)
+{
+	if (lz_scene_given(s, "ranks") && lz_scene_int(s, "ranks") != size)
+		return lz_scene_fail(s, "ranks", "ranks = %lld, but lz-mpi runs on %d processes "
+		                     "(mpirun -np %d), which are the ranks: leave the key out, or "
+		                     "run mpirun -np %lld", lz_scene_int(s, "ranks"), size, size,
+		                     lz_scene_int(s, "ranks"));
+	if (lz_scene_enum(s, "balance") != 0)
+		return lz_scene_fail(s, "balance", "balance = pilot is not done under lz-mpi yet "
+		                     "(lz run does it over the stub); use balance = none");
+	/* Only rank 0 runs the serial reference: the others need not build it. */
+	int st = LZ_OK;
+	if (rank != 0 && lz_scene_bool(s, "check") &&
+	    ((st = lz_scene_set(s, "check=no", "lz-mpi (rank 0 checks)")) != LZ_OK ||
+	     (st = lz_method_bind(&lz_method_pedmd, s)) != LZ_OK))
+		return st;
+	return lz_pedmd_scene_make(s, rank != 0, p);
+}
+
+/* The run's counters over all ranks, on rank 0 (lz_pedmd_counts_add). */
+static lz_pedmd_counts counts_of_all(const lz_pedmd *r, int rank, int size)
+{
+	lz_pedmd_counts mine = lz_pedmd_counters(r), sum = {0};
+	lz_pedmd_counts *all = rank == 0 ? malloc((size_t)size * sizeof *all) : NULL;
+	if (rank == 0 && !all) {
+		lz_error(LZ_ENOMEM, "no memory for the counters of %d ranks", size);
+		abort_run(rank, LZ_ENOMEM);
+	}
+	MPI_Gather(&mine, (int)sizeof mine, MPI_BYTE, all, (int)sizeof mine, MPI_BYTE, 0,
+	           MPI_COMM_WORLD);
+	for (int k = 0; rank == 0 && k < size; k++)
+		lz_pedmd_counts_add(&sum, &all[k]);
+	free(all);
+	return sum;
+}
+
+/* The owned particles of every rank written into `out` on rank 0 (its cells are not
+ * updated: the serial picture, as lz_pedmd_sim_gather). LZ_OK, or an error on rank 0
+ * when a particle came never or twice. O(N) on rank 0, O(owned) elsewhere. */
+static int gather(const lz_pedmd *r, int rank, int size, lz_edmd *out)
+{
+	const lz_edmd *e = lz_pedmd_system(r);
+	int mine = 0;
+	for (uint32_t i = 0; i < e->n; i++)
+		mine += lz_pedmd_role(r, i) == LZ_PEDMD_OWNED;
+	particle_record *own = malloc((size_t)(mine ? mine : 1) * sizeof *own);
+	particle_record *all = rank == 0 ? malloc(e->n * sizeof *all) : NULL;
+	int *count = rank == 0 ? malloc(2 * (size_t)size * sizeof *count) : NULL;
+	uint8_t *seen = rank == 0 ? calloc(e->n, 1) : NULL;
+	if (!own || (rank == 0 && (!all || !count || !seen))) {
+		lz_error(LZ_ENOMEM, "no memory to gather %zu particles", e->n);
+		abort_run(rank, LZ_ENOMEM);
+	}
+	int k = 0;
+	for (uint32_t i = 0; i < e->n; i++)
+		if (lz_pedmd_role(r, i) == LZ_PEDMD_OWNED)
+			own[k++] = (particle_record){i, 0, e->p[i]};
+	MPI_Datatype type;
+	MPI_Type_contiguous((int)sizeof *own, MPI_BYTE, &type);
+	MPI_Type_commit(&type);
+	MPI_Gather(&mine, 1, MPI_INT, count, 1, MPI_INT, 0, MPI_COMM_WORLD);
+	int *at = count ? count + size : NULL, st = LZ_OK;
+	size_t total = 0;  /* <= N < 2^31, so that every displacement is an int */
+	for (int q = 0; rank == 0 && q < size && st == LZ_OK; q++) {
+		at[q] = (int)total;
+		total += (size_t)count[q];
+		if (total > e->n)
+			st = lz_error(LZ_EDOM, "the ranks own more than the %zu particles", e->n);
+	}
+	if (rank == 0 && st != LZ_OK)
+		abort_run(rank, st);
+	MPI_Gatherv(own, mine, type, all, count, at, type, 0, MPI_COMM_WORLD);
+	MPI_Type_free(&type);
+	for (size_t q = 0; rank == 0 && q < total && st == LZ_OK; q++) {
+		uint32_t i = all[q].id;
+		if (i >= e->n || seen[i]++)
+			st = lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
+		else
+			out->p[i] = all[q].p;
+	}
+	if (rank == 0 && st == LZ_OK && total != e->n)
+		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", total, e->n);
+	out->t_base = e->t_base;  /* the particles' times are in the ranks' time base */
+	out->now = e->now;
+	free(own);
+	free(all);
+	free(count);
+	free(seen);
+	return st;
+}
+
+static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
+                   const lz_pedmd_counts *c, double wall)
+{
+	const lz_edmd *e = p->system;
+	printf("lz-mpi: scene %s, %zu %s, %d ranks along the %s curve\n", lz_scene_name(s), e->n,
+	       e->dim == 3 ? "spheres" : "disks", size,
+	       p->kind == LZ_PEDMD_ROWS ? "row" : "Morton");
+	printf("ranks                 %d\n", size);
+	printf("particles             %zu\n", e->n);
+	printf("simulated time        %.6g τ\n", p->t_stop);
+	printf("committed events      %llu\n", (unsigned long long)c->committed);
+	printf("processed events      %llu\n", (unsigned long long)c->processed);
+	printf("efficiency            %.4f\n",
+	       c->processed ? (double)c->committed / (double)c->processed : 0.0);
+	printf("windows               %llu\n", (unsigned long long)c->windows);
+	printf("rollbacks             %llu\n", (unsigned long long)c->rollbacks);
+	printf("conservative steps    %llu\n", (unsigned long long)c->conservative);
+	printf("parallel wall time    %.4f s\n", wall);
+	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
+	fflush(stdout);
+}
+
+/* What a process holds. */
+typedef struct {
+	lz_scene *s;
+	lz_pedmd_scene p;
+	lz_pedmd_domains *d;
+	lz_msg *msg;
+	lz_pedmd *r;
+} lz_mpi_run;
+
+/* Scene, seeds, system and domains, agreed on after every step that can fail (the
+ * steps between are collective): the agreed status. */
+static int setup(int argc, char **argv, int rank, int size, lz_mpi_run *x)
+{
+	int agreed;
+	if (agree(load(argc, argv, size, &x->s), rank, size, &agreed) ||
+	    agree(share_seeds(x->s, rank), rank, size, &agreed))
+		return agreed;
+	int st = make(x->s, rank, size, &x->p);
+	if (st == LZ_OK && !(x->d = lz_pedmd_domains_alloc(x->p.system, size, x->p.kind)))
+		st = last_code ? last_code : LZ_EINVAL;
+	if (agree(st, rank, size, &agreed))
+		return agreed;
+	if (!(x->msg = lz_msg_mpi_open()))  /* collective: a failure here stops everyone */
+		abort_run(rank, last_code);
+	x->r = lz_pedmd_alloc(x->p.system, x->d, x->msg, &x->p.params);
+	agree(x->r ? LZ_OK : last_code, rank, size, &agreed);
+	return agreed;
+}
+
+/* Free everything (collectively: the back-end's communicator) and exit with st. */
+static int quit(lz_mpi_run *x, int st)
+{
+	lz_pedmd_free(x->r);
+	lz_msg_mpi_close(x->msg);
+	lz_pedmd_domains_free(x->d);
+	lz_pedmd_scene_free(&x->p);
+	lz_scene_free(x->s);
+	MPI_Finalize();
+	return exit_status(st);
+}
+
+int main(int argc, char **argv)
+{
+	MPI_Init(&argc, &argv);
+	int rank, size;
+	MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+	MPI_Comm_size(MPI_COMM_WORLD, &size);
+	lz_set_error_handler(record);
+	lz_mpi_run x = {0};
+	int st = setup(argc, argv, rank, size, &x);
+	if (st != LZ_OK)
+		return quit(&x, st);
+
+	/* The parallel part. A waiting rank yields its core (mpirun --oversubscribe). */
+	MPI_Barrier(MPI_COMM_WORLD);
+	double t0 = MPI_Wtime();
+	lz_work state = LZ_WORK_BUSY;
+	while (state != LZ_WORK_DONE) {
+		if ((st = lz_pedmd_work(x.r, x.p.t_stop, &state)) != LZ_OK)
+			abort_run(rank, st);
+		if (state == LZ_WORK_WAIT)
+			sched_yield();
+	}
+	double wall = MPI_Wtime() - t0, slowest = wall;
+	MPI_Reduce(&wall, &slowest, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+
+	/* The results, on rank 0. */
+	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
+	st = gather(x.r, rank, size, x.p.system);
+	if (rank == 0 && st == LZ_OK)
+		report(x.s, &x.p, size, &c, slowest);
+	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {
+		size_t k = lz_pedmd_scene_differ(x.p.system, x.p.reference);
+		if (k == 0)
+			printf("identical to the serial run: yes\n");
+		else
+			printf("identical to the serial run: no: %zu particles differ\n", k);
+		if (k)
+			st = lz_error(LZ_EPHYS, "%zu of the %zu particles end elsewhere than in the "
+			              "serial run: the parallel engine is wrong", k, x.p.system->n);
+	}
+	fflush(stdout);
+	if (rank == 0 && st != LZ_OK)
+		fprintf(stderr, "lz-mpi: %s\n", lz_error_message());
+	MPI_Bcast(&st, 1, MPI_INT, 0, MPI_COMM_WORLD);
+	return quit(&x, st);
+}
