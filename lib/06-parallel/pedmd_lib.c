@@ -112,6 +112,8 @@ static int check_params(const lz_pedmd_params *p)
 		                p->balance);
 	if (!(p->threshold >= 0 && p->threshold < 1))
 		return lz_error(LZ_EINVAL, "threshold = %g: in [0, 1)", p->threshold);
+	if (p->recheck != 0 && p->recheck != 1)
+		return lz_error(LZ_EINVAL, "recheck = %d: 0 or 1", p->recheck);
 	if (p->work < 1)
 		return lz_error(LZ_EINVAL, "work = %d events a turn: at least 1", p->work);
 	return LZ_OK;
@@ -420,7 +422,7 @@ void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
 		return;
 	}
 	r->wlog[r->nwlog++] = (lz_pedmd_record){r->e->t_base + t, i < j ? i : j, i < j ? j : i,
-	                                        kind, r->e->p[i].cell};
+	                                        kind, r->e->p[i < j ? i : j].cell};
 }
 
 /* ---- the messages that wait ---- */
@@ -484,6 +486,33 @@ void lz_pedmd_rebuild(lz_pedmd *r, const double *key)
 /* ---- the window protocol ---- */
 
 
+/* FNV-1a over n bytes, continuing from h. */
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+	const unsigned char *b = data;
+	for (size_t k = 0; k < n; k++)
+		h = (h ^ b[k]) * 1099511628211u;
+	return h;
+}
+
+/* A fingerprint of the rank: its owned particles (number, record, event) and the
+ * window's events, these in any order (events at one time may run in either order: the
+ * heap is rebuilt by a rollback, and ties then pop otherwise). O(N + window). */
+static uint64_t fingerprint(const lz_pedmd *r)
+{
+	uint64_t h = 14695981039346656037u;
+	for (uint32_t i = 0; i < r->e->n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED) {
+			h = fnv(h, &i, sizeof i);
+			h = fnv(h, &r->e->p[i], sizeof r->e->p[i]);
+			h = fnv(h, &r->own[i], sizeof r->own[i]);
+		}
+	uint64_t events = 0;
+	for (size_t k = 0; k < r->nwlog; k++)
+		events += fnv(14695981039346656037u, &r->wlog[k], sizeof r->wlog[k]);
+	return fnv(h, &events, sizeof events);
+}
+
 /* The earliest time anything happens next on this rank (absolute). */
 static double next_time(const lz_pedmd *r)
 {
@@ -503,6 +532,8 @@ static int begin_window(lz_pedmd *r, double t_stop)
 	r->forced = !isnan(r->forced_end);
 	r->forced_end = NAN;
 	int st = lz_pedmd_begin(r, fmin(fmin(end, rebase), t_stop));
+	if (r->p.recheck && !r->rerun)
+		r->print0 = fingerprint(r);
 	r->counts.windows++;
 	r->phase = LZ_PEDMD_RUN;
 	return st;
@@ -625,11 +656,41 @@ static void finish(lz_pedmd *r, double t_stop)
 	r->phase = LZ_PEDMD_DONE;
 }
 
+/* The rollback check at a verdict: 1 when the window is to run again (its first run
+ * rolled back), 0 to go on with the verdict; a difference sets r->failed. */
+static int recheck(lz_pedmd *r, int v)
+{
+	if (v != LZ_PEDMD_COMMIT) {
+		r->rerun = 0;  /* the rerun met an error the first run did not: nothing to compare */
+		return 0;
+	}
+	uint64_t now = fingerprint(r);
+	if (r->rerun) {
+		r->rerun = 0;
+		if (now != r->print1)
+			r->failed = lz_error(LZ_EDOM, "rank %d, rollback check: the window [%.17g, %.17g] "
+			                     "run again ended in another state", r->rank, r->T, r->t_end);
+		return 0;
+	}
+	r->print1 = now;
+	lz_pedmd_restore(r);
+	if (fingerprint(r) != r->print0)
+		r->failed = lz_error(LZ_EDOM, "rank %d, rollback check: the state restored at %.17g "
+		                     "is not the one saved there", r->rank, r->T);
+	r->rerun = 1;
+	r->counts.rechecks++;
+	r->forced_end = r->t_end;
+	r->phase = LZ_PEDMD_BEGIN;
+	return 1;
+}
+
 /* At the cut: act on the verdict. */
 static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
 {
 	double end;
 	int v = lz_pedmd_decide(t_error, r->T, t_next, &end);
+	if (r->p.recheck && recheck(r, v))
+		return;
 	if (v == LZ_PEDMD_COMMIT) {
 		commit(r);
 		if (r->rebase_at_end)
@@ -724,6 +785,8 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 	int rounds = r->rounds, phase = r->phase;
 	if ((!did || r->t_error != INFINITY || r->in_round) && (st = cut(r, t_stop)) != LZ_OK)
 		return st;
+	if (r->failed)
+		return r->failed;
 	did |= r->rounds != rounds || r->phase != phase;  /* the cut moved on */
 	if (r->phase == LZ_PEDMD_DONE)
 		*state = LZ_WORK_DONE;

@@ -137,6 +137,7 @@ void lz_pedmd_counts_add(lz_pedmd_counts *s, const lz_pedmd_counts *c)
 	s->balances = c->balances;
 	s->late_harmless += c->late_harmless;
 	s->saved_bytes = c->saved_bytes > s->saved_bytes ? c->saved_bytes : s->saved_bytes;
+	s->rechecks = c->rechecks;
 	s->collisions += c->collisions;
 	s->crossings += c->crossings;
 	s->bounces += c->bounces;

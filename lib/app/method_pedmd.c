@@ -66,6 +66,9 @@ static const lz_key keys[] = {
 	{.name = "balance", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|pilot",
 	 .help = "pilot: run once first and cut the curve so that every rank gets the same "
 	         "share of the pilot's committed events"},
+	{.name = "recheck", .type = LZ_KEY_BOOL, .def = "no",
+	 .help = "the rollback check: every window is rolled back and run again, and must "
+	         "end as the first time (twice the work)"},
 	{.name = "check", .type = LZ_KEY_BOOL, .def = "yes",
 	 .help = "run the serial reference too; the committed events and the final state "
 	         "must equal it bit for bit"},
@@ -135,7 +138,8 @@ int lz_pedmd_scene_make(const lz_scene *s, int quiet, lz_pedmd_scene *out)
 	out->kind = lz_scene_enum(s, "decomposition") == 0 ? LZ_PEDMD_ROWS : LZ_PEDMD_MORTON;
 	out->stub = stub_of(s);
 	out->params = (lz_pedmd_params){lz_scene_real(s, "window"), lz_scene_real(s, "rebase"), 0,
-	                                0.1, 0, (int)lz_scene_int(s, "work")};
+	                                0.1, 0, (int)lz_scene_int(s, "work"),
+	                                lz_scene_bool(s, "recheck")};
 	out->t_stop = lz_scene_real(s, "time");
 	out->check = out->reference != NULL;
 	return LZ_OK;
@@ -262,6 +266,7 @@ static void summarise(const lz_pedmd_scene *p, const lz_pedmd_sim *x, double wal
 	lz_json_int(j, "conservative_steps", (long long)c.conservative);
 	lz_json_int(j, "late_harmless", (long long)c.late_harmless);
 	lz_json_num(j, "saved_bytes_max", (double)c.saved_bytes);
+	lz_json_int(j, "rechecked_windows", (long long)c.rechecks);
 	if (e->restitution == 1 && e->g == 0 && !e->wall[0]) {
 		const char *source = "";
 		double eta = (double)e->n * (e->dim == 3 ? M_PI / 6 : M_PI / 4) / pow(e->L, e->dim);

@@ -240,10 +240,10 @@ LZ_TEST(pedmd_refuses_bad_parameters_and_audits)
 {
 	lz_edmd *s = gas(2, 400, 0.3, 2);
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 1, 2, 0, 1, 1e-6, 1e-6, 1e-6};
-	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16};
+	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16, 0};
 	lz_pedmd_params bad[] = {
-		{0, 0.5, 0, 0.1, 1, 16}, {INFINITY, 0.5, 0, 0.1, 1, 16}, {0.05, -1, 0, 0.1, 1, 16},
-		{0.05, 0.5, 3, 0.1, 1, 16}, {0.05, 0.5, 0, 1, 1, 16}, {0.05, 0.5, 0, 0.1, 1, 0},
+		{0, 0.5, 0, 0.1, 1, 16, 0}, {INFINITY, 0.5, 0, 0.1, 1, 16, 0}, {0.05, -1, 0, 0.1, 1, 16, 0},
+		{0.05, 0.5, 3, 0.1, 1, 16, 0}, {0.05, 0.5, 0, 1, 1, 16, 0}, {0.05, 0.5, 0, 0.1, 1, 0, 0},
 	};
 	const char *says[] = {"window", "window", "rebase", "balance", "threshold", "work"};
 	for (int k = 0; k < 6; k++) {
@@ -311,7 +311,7 @@ LZ_TEST(pedmd_cuts_from_a_pilot_run_spread_the_work)
 {
 	lz_edmd *s = sediment(800), *t = sediment(800);
 	lz_stub_params sp = {4, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0};
 	lz_pedmd_sim *pilot = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 	ck_assert_ptr_nonnull(pilot);
 	ck_assert_int_eq(lz_pedmd_sim_run(pilot, 1.0), LZ_OK);
@@ -358,5 +358,41 @@ LZ_TEST(pedmd_cuts_from_a_pilot_run_spread_the_work)
 	lz_pedmd_sim_free(pilot);
 	lz_edmd_free(s);
 	lz_edmd_free(t);
+}
+END_TEST
+
+LZ_TEST(pedmd_rollback_check_reruns_every_window_alike)
+{
+	/* every window rolled back and run again, as the schedule then goes: the same end;
+	 * and one rank alone never rolls back and commits all it processes */
+	for (int policy = LZ_STUB_ROUND_ROBIN; policy <= LZ_STUB_VIRTUAL; policy++)
+		for (int P = 1; P <= 4; P += 3) {
+			lz_edmd *s = gas(2, 600, 0.35, 7), *ref = gas(2, 600, 0.35, 7);
+			ck_assert_int_eq(lz_pedmd_serial(ref, 1.0, 0.5), LZ_OK);
+			lz_stub_params sp = {P, (lz_stub_policy)policy, 9, 3, 0, 4, 1e-6, 2e-6, 5e-6};
+			lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 1};
+			lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
+			ck_assert_ptr_nonnull(x);
+			int st = lz_pedmd_sim_run(x, 1.0);
+			ck_assert_msg(st == LZ_OK, "P = %d, policy %d: %s", P, policy, lz_error_message());
+			lz_pedmd_counts c = lz_pedmd_sim_counts(x);
+			ck_assert_msg(c.rechecks > 0 && c.committed == ref->events, "P = %d, policy %d: %llu "
+			              "windows rechecked, %llu committed against %llu serial events", P,
+			              policy, (unsigned long long)c.rechecks, (unsigned long long)c.committed,
+			              (unsigned long long)ref->events);
+			if (P == 1)
+				ck_assert_msg(c.rollbacks == 0 && c.conservative == 0 &&
+				              c.processed == 2 * c.committed, "one rank: %llu rollbacks, %llu "
+				              "processed (twice, rechecked) for %llu committed",
+				              (unsigned long long)c.rollbacks, (unsigned long long)c.processed,
+				              (unsigned long long)c.committed);
+			lz_pedmd_sim_gather(x, s);
+			for (uint32_t i = 0; i < s->n; i++)
+				LZ_REQUIRE(memcmp(&s->p[i].r, &ref->p[i].r, sizeof s->p[i].r) == 0, "P = %d, "
+				      "policy %d, rechecked: particle %u ends elsewhere than serially", P, policy, i);
+			lz_pedmd_sim_free(x);
+			lz_edmd_free(s);
+			lz_edmd_free(ref);
+		}
 }
 END_TEST

@@ -123,8 +123,9 @@ typedef struct {
 	double t;       /* absolute time */
 	uint32_t i, j;  /* particles (j = i for one-particle events; i < j for collisions) */
 	uint32_t kind;
-	uint32_t cell;  /* the cell of the noting rank's particle after the event: where
-	                   the work was done, for the load of lz_pedmd_rebalance */
+	uint32_t cell;  /* the cell of particle i (the smaller number, which the noting
+	                   rank owns) after the event: where the work was done, for the
+	                   load of lz_pedmd_rebalance */
 } lz_pedmd_record;
 
 /* The first version, in this window, of one particle on this rank. */
@@ -144,6 +145,7 @@ typedef struct {
 	uint64_t windows, rollbacks, conservative, balances;
 	uint64_t late_harmless;  /* messages that came late but changed nothing used */
 	uint64_t saved_bytes;    /* the most a window saved */
+	uint64_t rechecks;       /* windows run twice by the rollback check */
 	uint64_t collisions, crossings, bounces, stale;  /* committed, by kind */
 	double virial;           /* committed collisions' virial (this rank's share) */
 } lz_pedmd_counts;
@@ -159,6 +161,11 @@ typedef struct {
 	double threshold;   /* ... when the largest load improves by this fraction */
 	int log;            /* 1: keep the committed events (lz_pedmd_log) */
 	int work;           /* events per turn of the work function (> 0) */
+	int recheck;        /* 1: the rollback check — every window that would commit is
+	                       rolled back (the restored state must equal the window's
+	                       start) and run again (as the back-end then schedules it),
+	                       and must end in the same state and events; else the run
+	                       fails with LZ_EDOM. Costs a second run and O(N) per window */
 } lz_pedmd_params;
 
 /* One rank. Invariants between events: an OWNED particle lies in an owned cell and
@@ -220,6 +227,10 @@ typedef struct lz_pedmd {
 	int in_round, woke, rounds, rebase_at_end, forced;
 	double last_sum[3];
 	double forced_end;            /* the next window's end, set at a cut (NAN: none) */
+	/* the rollback check (params.recheck) */
+	int rerun;                    /* 1: this window runs the second time */
+	uint64_t print0, print1;      /* fingerprints: the window's start, its first end */
+	int failed;                   /* an LZ_E code lz_pedmd_work returns (lz_error set) */
 } lz_pedmd;
 
 /* ---- graded (solutions/06-parallel/pedmd.c) ---- */
@@ -312,8 +323,8 @@ int lz_pedmd_announce(lz_pedmd *r, uint32_t i, uint32_t from, int to_owner, doub
 int lz_pedmd_late(lz_pedmd *r, double t);
 
 /* An event (relative time t) this window will commit, if it commits: counted (with a
- * collision's virial, and in the load of particle i's cell) and appended to the
- * window's log (no memory: r->nomem, and lz_pedmd_work fails). */
+ * collision's virial, and in the load of the cell of the smaller of i and j) and
+ * appended to the window's log (no memory: r->nomem, and lz_pedmd_work fails). */
 void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
                    double virial);
 
