@@ -8,8 +8,10 @@
  * gravity; a closed box with restitution 0.8, cooling), each from its lattice start:
  * the serial run, re-based at the multiples of 0.5 as the ranks re-base, its events
  * logged; then P = 1, 2, 3, 4, 8 ranks along rows and along the Morton curve, under
- * two schedules: a seeded random interleaving with messages held back 0-3 turns, and
- * virtual time on the cluster of pedmd_lesson.h. Every cut of every run is audited
+ * two schedules: a seeded random interleaving with messages held back 0-3 turns, run
+ * under the rollback check (every window rolled back and run again, which must end
+ * alike), and virtual time on the cluster of pedmd_lesson.h. Every cut of every run is
+ * audited
  * (lz_pedmd_audit: each particle owned once, in its owner's cell and heap; every ghost
  * a copy of its owner's record and event).
  *
@@ -108,10 +110,11 @@ static int one_gas(lz_lesson *L, const gas *g, int v, double time, lz_data *d, t
 		for (int kind = 0; kind < 2 && st == LZ_OK; kind++)
 			for (int pol = 0; pol < 2 && st == LZ_OK; pol++) {
 				par_setup q = {ranks_of[k], kind, stub_on(&CLUSTER, 1, SEED + 17u * (unsigned)k),
-				               {0.05, g->rebase, 0, 0.1, 1, 16, 1}, NULL, 1};
-				if (pol == 0) {
+				               {0.05, g->rebase, 0, 0.1, 1, 16, 0}, NULL, 1};
+				if (pol == 0) {  /* random, and every window rolled back and run again */
 					q.sp.policy = LZ_STUB_RANDOM;
 					q.sp.delay = 3;
+					q.pp.recheck = 1;
 				}
 				par_result r;
 				if ((st = par_run(start, &q, time, ref, &log, pic, NULL, &r)) != LZ_OK)
