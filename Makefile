@@ -97,6 +97,22 @@ $(BUILD)/obj/app/cli.o: EXTRA_INC = -DLZ_SCENE_DIR='"$(abspath datasets/scenes)"
 $(LZ): $(BUILD)/obj/app/lz.o $(APP_OBJS) $(LIB)
 	$(LINK)
 
+# ---- lz-mpi: the pedmd scenes with one process per rank, where mpicc is ----
+# The MPI back-end (lib/06-parallel/mpi/) is outside the library's wildcard: liblz.a
+# needs no MPI. Only these objects and the link use mpicc (private: not the library's).
+MPICC ?= mpicc
+HAVE_MPI := $(shell command -v $(MPICC) >/dev/null 2>&1 && echo 1)
+LZ_MPI := $(BUILD)/bin/lz-mpi
+MPI_OBJS := $(BUILD)/obj/mpi/msg_mpi.o $(BUILD)/obj/mpi/lz_mpi.o
+$(BUILD)/obj/mpi/msg_mpi.o: lib/06-parallel/mpi/msg_mpi.c $(BUILD)/flags.stamp
+	$(COMPILE)
+$(BUILD)/obj/mpi/lz_mpi.o: lib/app/mpi/lz_mpi.c $(BUILD)/flags.stamp
+	$(COMPILE)
+$(BUILD)/obj/mpi/lz_mpi.o: EXTRA_INC = -Ilib/app
+$(MPI_OBJS) $(LZ_MPI): private CC = $(MPICC)
+$(LZ_MPI): $(MPI_OBJS) $(APP_OBJS) $(LIB)
+	$(LINK)
+
 # ---- tests ---------------------------------------------------------------
 RUNNER_OBJ := $(BUILD)/obj/grade/runner.o
 $(BUILD)/obj/grade/%.o: tests/grade/%.c $(BUILD)/flags.stamp
@@ -136,8 +152,8 @@ DRIVERS := $(foreach s,$(STAGES),$(patsubst lessons/$(s)/%.c,$(BUILD)/lessons/$(
 
 # ---- user targets --------------------------------------------------------
 .PHONY: all tests check check-run test grade grade-all lesson demo slides bench \
-        assignments handout submit mutants deps clean help need-stage
-all: $(LIB) $(LZ) $(DRIVERS)
+        assignments handout submit mutants deps clean help need-stage mpi-check
+all: $(LIB) $(LZ) $(DRIVERS) $(if $(HAVE_MPI),$(LZ_MPI))
 tests: $(TEST_BINS) $(REPORT) $(LZ)
 
 deps:
@@ -191,6 +207,10 @@ mutants: all tests
 
 handout:
 	@bash lib/tools/handout.sh "$(BUILD)"
+
+# lz-mpi on P = 1 .. 4 processes against the serial run (skipped without MPI).
+mpi-check: $(if $(HAVE_MPI),$(LZ_MPI))
+	@bash tests/mpi/check.sh "$(BUILD)"
 
 # The student's submission: exactly the files the MANIFESTs name, listed.
 submit:

@@ -85,10 +85,27 @@ static int all_at(const lz_pedmd_sim *x, double T)
  * than the last audited cut is held (it spends a turn doing nothing, charged as one
  * event so that virtual time moves on) until every rank is there; then the cut is
  * audited once, and they go on. */
+/* The events all ranks have processed. O(P). */
+static uint64_t processed(const lz_pedmd_sim *x)
+{
+	uint64_t n = 0;
+	for (int k = 0; k < x->P; k++)
+		n += x->rank[k]->counts.processed;
+	return n;
+}
+
 static int work(int rank, void *arg, lz_work *state)
 {
 	lz_pedmd_sim *x = arg;
 	lz_pedmd *r = x->rank[rank];
+	if (x->most && processed(x) > x->most)
+		return lz_error(LZ_EDOM, "no progress: the ranks processed %llu events and reached "
+		                "time %.17g of %.17g (%llu windows, %llu rollbacks, %llu conservative "
+		                "steps) — a rollback or a verdict that never lets a window commit?",
+		                (unsigned long long)processed(x), r->T, x->t_stop,
+		                (unsigned long long)r->counts.windows,
+		                (unsigned long long)r->counts.rollbacks,
+		                (unsigned long long)r->counts.conservative);
 	if (x->audit && r->phase == LZ_PEDMD_BEGIN && r->T > x->audited_T) {
 		if (!all_at(x, r->T)) {
 			*state = LZ_WORK_BUSY;

@@ -1098,6 +1098,7 @@ static lz_pedmd_counts check_run(const scene *sc, const char *what)
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, sc->kind, &sp, &PARAMS);
 	LZ_REQUIRE(x, "%s: %s", what, lz_error_message());
 	x->audit = 1;
+	x->most = 40 * nwant + 10000;  /* the runs here process 1-5 events per committed one */
 	int st = lz_pedmd_sim_run(x, t_stop);
 	LZ_REQUIRE(st == LZ_OK, "%s: the run failed: %s", what, lz_error_message());
 	lz_pedmd_counts c = lz_pedmd_sim_counts(x);

@@ -394,6 +394,9 @@ typedef struct {
 	lz_stub *stub;
 	lz_pedmd **rank;     /* rank[0 .. P-1] */
 	int audit;           /* 1: lz_pedmd_audit at every cut (O(N P) each) */
+	uint64_t most;       /* > 0: the run fails (LZ_EDOM, "no progress") once the ranks
+	                        have processed more events than this, rolled back ones
+	                        included: a livelock ends in a message, not a time-out */
 	uint64_t audits;     /* cuts audited so far */
 	double t_stop;       /* of the current lz_pedmd_sim_run */
 	double audited_T;    /* the window start audited last */
