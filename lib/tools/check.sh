@@ -62,8 +62,21 @@ for s in $stages; do
 done
 step "assignments/ is generated from solutions/" bash lib/tools/mkassign.sh solutions assignments --check
 step "stub audit" bash tests/grade/audit.sh "$build" "$stages"
+# The mutant sample and the fixtures are each mostly one process at a time (a test
+# run, a build of one stage): on two cores they overlap, the mutants in the background
+# into a log of their own that is shown, and counted, when the fixtures are done.
+mutant_log=$(mktemp)
+trap 'rm -f "$log" "$mutant_log"' EXIT
+bash tests/grade/mutants.sh "$build" --sample >"$mutant_log" 2>&1 &
+mutant_pid=$!
 step "grader fixtures" bash tests/grade/fixtures.sh "$build"
-step "mutants, one per graded function" bash tests/grade/mutants.sh "$build" --sample
+mutant_status=0
+wait "$mutant_pid" || mutant_status=$?
+replay() {  # replay LOG STATUS: the background step's output, and its status
+	cat "$1"
+	return "$2"
+}
+step "mutants, one per graded function (run beside the fixtures)" replay "$mutant_log" "$mutant_status"
 step "handout and the student's path" bash lib/tools/handout.sh "$build"
 step "MPI back-end (lz-mpi, P = 1..4)" bash tests/mpi/check.sh "$build"
 
