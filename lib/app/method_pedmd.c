@@ -305,6 +305,7 @@ static int run(const lz_scene *s, lz_run *run)
 	double wall_s = lz_wall_now() - t0;
 	if (st == LZ_OK) {
 		lz_pedmd_sim_gather(x, p.system);
+		p.system->t_base = x->rank[0]->e->t_base;  /* the records' times are the ranks' */
 		p.system->now = p.t_stop - p.system->t_base;
 		summarise(&p, x, wall_s, ratio, run->summary);
 	}
