@@ -52,8 +52,9 @@ static int exit_status(int st)
 	return st == LZ_OK ? 0 : st == USAGE || st == LZ_EINVAL || st == LZ_ESYNTAX ? 2 : 1;
 }
 
-/* Every process has status st: the first failing rank (size when none) says why and
- * gets everyone's status from it in *agreed. */
+/* Every process has status st: 1 when some rank failed — the first failing rank says
+ * why, and every process gets its status in *agreed — else 0 (*agreed = LZ_OK).
+ * Collective over MPI_COMM_WORLD. */
 static int agree(int st, int rank, int size, int *agreed)
 {
 	int me = st != LZ_OK ? rank : size, first;

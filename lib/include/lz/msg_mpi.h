@@ -35,8 +35,9 @@
 lz_msg *lz_msg_mpi_open(void);
 
 /* Wait for the sends still in flight (every one must be received: at the end of a
- * run, after its last cut, none is pending), free the communicator and the buffers.
- * Collective, as open (MPI_Comm_free). NULL: nothing. */
+ * run, after its last cut, none is pending) and for a reduction still running (every
+ * rank must have started it), free the communicator and the buffers. Collective, as
+ * open (MPI_Comm_free). NULL: nothing. */
 void lz_msg_mpi_close(lz_msg *m);
 
 #endif
