@@ -222,7 +222,7 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 		lz_pedmd_event ev = {lz_heap_key(s->heap, i), s->ev[i]};
 		r->role[i] = k == LZ_PEDMD_HALO ? LZ_PEDMD_GHOST
 		             : k == LZ_PEDMD_FAR ? LZ_PEDMD_ABSENT : LZ_PEDMD_OWNED;
-		r->own[i] = ev;
+		r->own[i] = r->role[i] == LZ_PEDMD_OWNED ? ev : (lz_pedmd_event){-INFINITY, {LZ_EDMD_NONE, 0}};
 		r->ghost[i] = ev;
 		r->heard[i] = -INFINITY;
 	}

@@ -219,7 +219,8 @@ static int face(lz_pedmd *r, uint32_t i, int f, double t)
 	}
 	lz_heap_pop(e->heap);  /* i was the top: it leaves this rank's heap */
 	r->role[i] = LZ_PEDMD_GHOST;
-	r->own[i] = r->ghost[i] = (lz_pedmd_event){INFINITY, {LZ_EDMD_NONE, 0}};  /* q predicts */
+	r->ghost[i] = (lz_pedmd_event){INFINITY, {LZ_EDMD_NONE, 0}};  /* q predicts */
+	r->own[i] = (lz_pedmd_event){t, {LZ_EDMD_NONE, 0}};  /* when it left: see apply_state */
 	return lz_pedmd_announce(r, i, c, q, t);
 }
 /* LZ_HELPERS_END */
@@ -237,7 +238,8 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	 * ghost's next event comes from its owner: forget the old one). A face: a wall
 	 * bounce, or a crossing — into a cell this rank owns (predict, announce with
 	 * the old cell as `from`), or into another rank's: pop i from the heap, make it
-	 * a GHOST here and announce with that rank as `to_owner` (it gets MIGRATE). Save
+	 * a GHOST here (own[i].t = t: when it left) and announce with that rank as
+	 * `to_owner` (it gets MIGRATE). Save
 	 * before you change anything (lz_pedmd_save). See §4. */
 	/* LZ_SOLUTION_BEGIN */
 	lz_edmd *e = r->e;
@@ -295,6 +297,9 @@ static int apply_state(lz_pedmd *r, const lz_pedmd_message *m)
 		                "its halo, or of a particle it owns", r->rank, g, to);
 	if ((had && r->read[e->p[g].cell] > m->t) || r->read[to] > m->t)
 		return lz_pedmd_late(r, m->t);
+	int32_t aim = m->event.ev.partner;
+	if (aim >= 0 && r->role[aim] != LZ_PEDMD_OWNED && r->own[aim].t > m->event.t)
+		return lz_pedmd_late(r, m->event.t);  /* it aims at one this rank still had then */
 	int st = lz_pedmd_save(r, g);
 	if (st)
 		return st;
@@ -367,7 +372,9 @@ int lz_pedmd_apply(lz_pedmd *r, const lz_pedmd_message *m)
 	/* Hint: a message later than r->clock waits (lz_pedmd_wait). Otherwise, by kind:
 	 * STATE — the ghost's new record and event (ignore one older than the record
 	 * you have: it comes from a former owner); LATE (lz_pedmd_late(r, m->t)) when a
-	 * prediction after m->t read its old or its new cell (read[c] > m->t); move it
+	 * prediction after m->t read its old or its new cell (read[c] > m->t); LATE at
+	 * the event's time when the event aims at a particle r no longer owns but handed
+	 * over after that time (own[aim].t): r should have carried out that collision; move it
 	 * to its new cell; the owned particles its old and its new event aim at get
 	 * their keys again (lz_pedmd_retarget). MIGRATE — into a cell r owns: LATE when
 	 * a prediction read the cell after m->t or some particle of the block is past

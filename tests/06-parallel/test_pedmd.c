@@ -762,6 +762,9 @@ LZ_TEST(step_hands_a_particle_over_at_the_border)
 	      "rank 0: particle 0 crossed into cell %u, which rank 1 owns: it leaves rank 0's heap and "
 	      "stays as a ghost in that (HALO) cell with its record (role %d, in the heap: %d)",
 	      a->p[0].cell, lz_pedmd_role(r0, 0), lz_heap_contains(r0->e->heap, 0));
+	LZ_REQUIRE(r0->own[0].t == 0.5 && r0->ghost[0].t == INFINITY, "rank 0 remembers when "
+	      "particle 0 left (own[0].t = %g, not 0.5), and knows no event of the ghost until its "
+	      "new owner says (ghost[0].t = %g)", r0->own[0].t, r0->ghost[0].t);
 	LZ_REQUIRE(r0->nwlog == 2 && r0->wlog[1].kind == LZ_PEDMD_CROSSING && r0->wlog[1].i == 0,
 	      "rank 0 carried out the crossing: it notes it (its log holds %zu events)", r0->nwlog);
 	drain(r1, count, &m);
@@ -917,6 +920,20 @@ LZ_TEST(apply_takes_over_a_migrated_particle)
 	drain(r0, count, &m);
 	LZ_REQUIRE(count[LZ_PEDMD_STATE] == 1 && m.id == 0, "rank 0 holds the new cell as HALO: the "
 	      "new owner announces particle 0 with its prediction (%d STATE)", count[0]);
+
+	/* rank 0 handed 0 over at 0.5; late news of 1 whose next event hits 0 */
+	lz_pedmd_message n = state_of(1, &r0->e->p[1], 0.1);
+	n.event = (lz_pedmd_event){0.7, {0, r0->e->p[0].count}};
+	ck_assert_int_eq(lz_pedmd_apply(r0, &n), LZ_OK);
+	LZ_REQUIRE(r0->t_error == INFINITY, "rank 0 gets news of 0.1: the ghost of 1 will hit "
+	      "particle 0 at 0.7, after 0 went over to rank 1 at 0.5 — rank 1's collision, no "
+	      "causality error here (found %g)", r0->t_error);
+	n.event.t = 0.4;
+	ck_assert_int_eq(lz_pedmd_apply(r0, &n), LZ_OK);
+	LZ_REQUIRE(r0->t_error >= 0.1 && r0->t_error <= 0.4, "rank 0 gets news of 0.1: the ghost "
+	      "of 1 hits particle 0 at 0.4, when rank 0 still owned 0 (it handed it over at 0.5, "
+	      "crossing instead of colliding): a causality error at 0.4 (or earlier, down to the "
+	      "news), found %g — the rank must remember when a particle left", r0->t_error);
 	duo_free(&d);
 }
 END_TEST

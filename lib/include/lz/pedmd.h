@@ -185,7 +185,8 @@ typedef struct lz_pedmd {
 	double *read;                 /* HALO and BORDER cells: the last time a prediction
 	                                 read the cell */
 	uint8_t *role;                /* every particle's role */
-	lz_pedmd_event *own;          /* OWNED: its own prediction */
+	lz_pedmd_event *own;          /* OWNED: its own prediction; else own[i].t is when
+	                                 this rank last handed it over (-INFINITY: never) */
 	lz_pedmd_event *ghost;        /* GHOST: its owner's prediction */
 	double *heard;                /* the time of the last message applied about the
 	                                 particle (-INFINITY: none): an older one that
