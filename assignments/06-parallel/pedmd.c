@@ -111,9 +111,9 @@ int lz_pedmd_apply(lz_pedmd *r, const lz_pedmd_message *m)
 int lz_pedmd_decide(double t_error, double T, double t_next, double *t_end)
 {
 	/* Hint: no error (t_error infinite): commit. An error after T: roll back and end
-	 * the next window just before it (nextafter towards -infinity) — unless that is
-	 * not after T, when no window can be shortened enough: then a conservative step
-	 * to t_next. See §7. */
+	 * the next window at the error's time (its events still run: the error cannot
+	 * come again at the end of a window). An error at T or before: no window can be
+	 * shortened enough — a conservative step to t_next. See §7. */
 	LZ_TODO();
 }
 

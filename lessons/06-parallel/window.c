@@ -7,7 +7,7 @@
  *
  * The system: 2D disks at η = 0.3, melted, P = 8 ranks along the Morton curve, on the
  * cluster of pedmd_lesson.h, in virtual time. The first window is c·P/R (R: serial
- * events per unit time), about c events per rank; it adapts — doubled after a commit,
+ * events per unit time), about c events per rank; it adapts — an eighth longer after a commit,
  * halved after a rollback — between 1/64 and 64 times that, so c sets both where it
  * starts and how far it may grow. c runs from 1/64 to 64 in factors of 2. Measured:
  * the virtual time, the efficiency (committed/processed events), the fraction of

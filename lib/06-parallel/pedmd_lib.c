@@ -557,6 +557,7 @@ int lz_pedmd_begin(lz_pedmd *r, double t_end)
 	r->wcommit = 0;
 	r->wvirial = 0;
 	r->t_error = INFINITY;
+	r->halted = 0;
 	return LZ_OK;
 }
 
@@ -575,6 +576,11 @@ static int receive(lz_pedmd *r)
 		if (n != sizeof m)
 			return lz_error(LZ_EDOM, "rank %d got a message of %zu bytes from rank %d, not "
 			                "%zu", r->rank, n, from, sizeof m);
+		if (m.kind == LZ_PEDMD_HALT) {  /* another rank's error: this window is lost */
+			r->halted = 1;
+			lz_pedmd_late(r, m.t);
+			continue;
+		}
 		if (r->t_error != INFINITY)
 			continue;
 		int late = m.t < r->clock;
@@ -582,6 +588,20 @@ static int receive(lz_pedmd *r)
 			return st;
 		r->counts.late_harmless += late && r->t_error == INFINITY;
 	}
+	return st;
+}
+
+/* This rank found the window's first error: every other rank is told to stop running
+ * a window that will be rolled back (else each runs on to its end, all of it lost). */
+static int halt(lz_pedmd *r)
+{
+	lz_pedmd_message m = {r->t_error, 0, LZ_PEDMD_HALT, r->e->p[0], {INFINITY, {LZ_EDMD_NONE, 0}}};
+	int st = LZ_OK;
+	r->halted = 1;
+	r->woke = 1;
+	for (int k = 0; k < lz_msg_size(r->msg) && st == LZ_OK; k++)
+		if (k != r->rank)
+			st = lz_msg_send(r->msg, k, &m, sizeof m);
 	return st;
 }
 
@@ -696,8 +716,11 @@ static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
 		if (r->rebase_at_end)
 			rebase(r);
 		r->T = r->t_end;
-		if (!r->forced)  /* a window cut short by a cut proves nothing of the width */
-			r->width = fmin(2 * r->width, 64 * r->p.window);
+		/* A window cut short by a cut proves nothing of the width. Slow growth, fast
+		 * shrinking: a rollback loses a whole window, a commit gains an eighth of one
+		 * (doubling, as the paper does, rolls back every other window; lesson §11) */
+		if (!r->forced)
+			r->width = fmin(1.125 * r->width, 64 * r->p.window);
 		r->phase = r->T >= t_stop ? LZ_PEDMD_DONE : LZ_PEDMD_BEGIN;
 		if (r->phase == LZ_PEDMD_DONE)
 			finish(r, t_stop);
@@ -782,6 +805,8 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 	if (r->nomem)
 		return lz_error(LZ_ENOMEM, "rank %d: no memory for the log of a window", r->rank);
 	lz_msg_charge(r->msg, events);
+	if (r->t_error != INFINITY && !r->halted && (st = halt(r)) != LZ_OK)
+		return st;
 	int rounds = r->rounds, phase = r->phase;
 	if ((!did || r->t_error != INFINITY || r->in_round) && (st = cut(r, t_stop)) != LZ_OK)
 		return st;

@@ -55,8 +55,8 @@ static const lz_key keys[] = {
 	 .help = "virtual: the time a message is on its way, at least"},
 	{.name = "window", .type = LZ_KEY_REAL, .def = "0.05", .min = 0, .max = 1e6,
 	 .min_open = 1, .unit = "τ",
-	 .help = "the first optimistic window; it doubles after a commit and halves after a "
-	         "rollback, within 1/64 .. 64 times this"},
+	 .help = "the first optimistic window; it grows by an eighth after a commit and halves "
+	         "after a rollback, within 1/64 .. 64 times this"},
 	{.name = "rebase", .type = LZ_KEY_REAL, .def = "0.5", .min = 0, .max = 1e6,
 	 .min_open = 1, .unit = "τ",
 	 .help = "the clocks are re-based at the multiples of this absolute time (the serial "

@@ -41,10 +41,13 @@
  * every rank idle and the sums of messages sent and received equal twice in a row)
  * and decide together: no error anywhere — COMMIT (the saved state is discarded,
  * fossil collection); an error — ROLLBACK every rank to the saved state and run the
- * window again up to just before the earliest error (the paper's synchronisation
- * barrier at the error time); an error at the window's very start — a CONSERVATIVE
- * STEP: only the events at the global earliest time, which nothing can overtake, so
- * progress is certain (no livelock).
+ * window again up to the earliest error, its events included (the paper's
+ * synchronisation barrier at the error time). An error cannot come again at a
+ * window's end (nothing in the window is later than it), so the errors a window meets
+ * move strictly earlier and progress is certain (no livelock). An error at the
+ * window's very start, which the protocol never makes, would take a CONSERVATIVE
+ * STEP: only the events at the global earliest time, which nothing can overtake. The
+ * rank that finds an error tells the others (HALT), and they stop the lost window.
  *
  * State saving. A window saves the first version of every particle record it changes
  * (its record, event, role and events) and the rank's counters; a rollback writes
@@ -107,8 +110,10 @@ typedef struct {
 	lz_edmd_event ev;
 } lz_pedmd_event;
 
-/* A message between ranks: what changed on a particle, and when. */
-enum { LZ_PEDMD_STATE, LZ_PEDMD_MIGRATE, LZ_PEDMD_LEAVE };
+/* A message between ranks: what changed on a particle, and when. HALT is the
+ * protocol's own (lz_pedmd_work; it never reaches lz_pedmd_apply): its sender found a
+ * causality error at t, so the window will be rolled back and the others stop it. */
+enum { LZ_PEDMD_STATE, LZ_PEDMD_MIGRATE, LZ_PEDMD_LEAVE, LZ_PEDMD_HALT };
 typedef struct {
 	double t;              /* the sender's clock when it changed */
 	uint32_t id;           /* the particle */
@@ -152,7 +157,7 @@ typedef struct {
 
 /* What a run is asked to do. */
 typedef struct {
-	double window;      /* the first window's length (> 0); it adapts: x2 after a
+	double window;      /* the first window's length (> 0); it adapts: x1.125 after a
 	                       commit, /2 after a rollback, within [window/64, 64 window] */
 	double rebase;      /* re-base the clock at absolute multiples of this (> 0) */
 	int balance;        /* rebalance every this many windows: only 0 (never) for now;
@@ -226,6 +231,7 @@ typedef struct lz_pedmd {
 	/* the protocol (pedmd_lib.c) */
 	int phase;                    /* LZ_PEDMD_BEGIN .. LZ_PEDMD_DONE */
 	int in_round, woke, rounds, rebase_at_end, forced;
+	int halted;                   /* 1: this window's error is known to the others */
 	double last_sum[3];
 	double forced_end;            /* the next window's end, set at a cut (NAN: none) */
 	/* the rollback check (params.recheck) */
@@ -282,10 +288,10 @@ void lz_pedmd_restore(lz_pedmd *r);
 
 /* The decision at a cut. t_error: the earliest causality error on any rank (INFINITY:
  * none); T: the window's start; t_next: the earliest event or message anywhere.
- * COMMIT when there was no error; ROLLBACK with the next window ending just before
- * t_error when t_error > T; CONSERVATIVE (the next window ends at t_next, events at
- * exactly t_next only) when the error came at T itself and a window cannot be
- * shortened further. *t_end gets the next window's end for ROLLBACK and CONSERVATIVE.
+ * COMMIT when there was no error; ROLLBACK with the next window ending at t_error
+ * (its events included) when t_error > T; CONSERVATIVE (the next window ends at
+ * t_next, events at exactly t_next only) when the error came at T or before, and a
+ * window cannot be shortened further. *t_end gets the next window's end for ROLLBACK and CONSERVATIVE.
  * O(1). */
 enum { LZ_PEDMD_COMMIT, LZ_PEDMD_ROLLBACK, LZ_PEDMD_CONSERVATIVE };
 int lz_pedmd_decide(double t_error, double T, double t_next, double *t_end);
