@@ -96,13 +96,11 @@ static int check_stall(const lz_edmd *e, uint64_t window)
 	                lz_edmd_time(e), (unsigned long long)window, e->now, tau, e->restitution);
 }
 
-/* Before an event: ask for what this event and the next two will read, a stage of the
- * chain each. Event by event the loop jumps to random places in memory, and every
- * prediction waits on a chain of misses (cell heads, particle records); fetched an
- * event or two ahead, the chains of successive events overlap; the heap says which
- * events are likely next (lz_heap_next_items). A hint only: nothing is written, and a
- * wrong guess costs a few wasted fetches. */
-static void fetch_ahead(const lz_edmd *e)
+/* Each event jumps to random places in memory, and every prediction waits on a chain
+ * of misses (cell heads, particle records); fetched an event or two ahead, the chains
+ * of successive events overlap; the heap says which events are likely next
+ * (lz_heap_next_items). A wrong guess costs a few wasted fetches. */
+void lz_edmd_fetch_ahead(const lz_edmd *e)
 {
 	const lz_heap *h = e->heap;
 	if (h->n < 16)
@@ -153,7 +151,7 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 			return LZ_OK;
 		}
 		if (e->prefetch)
-			fetch_ahead(e);
+			lz_edmd_fetch_ahead(e);
 		if (lz_edmd_step(e) < 0)
 			return lz_error(LZ_EPHYS, "nothing left to happen at t = %.10g: every "
 			                "particle is at rest or alone on its path", lz_edmd_time(e));

@@ -794,6 +794,8 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 	int did = 0, events = 0;
 	while (r->phase == LZ_PEDMD_RUN && r->t_error == INFINITY && events < r->p.work) {
 		int one = 0;
+		if (r->e->prefetch)
+			lz_edmd_fetch_ahead(r->e);
 		if ((st = advance_one(r, &one)) != LZ_OK)
 			return st;
 		if (!one)

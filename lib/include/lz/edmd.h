@@ -215,6 +215,12 @@ void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b);
  * them in the cache. O(1): 2 prefetches per row of the block. */
 void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c);
 
+/* Before the next event: ask the memory system for what it and the two after it will
+ * read (cells, records, heap nodes), a stage of each chain of misses per event, so
+ * that successive events' misses overlap (lesson 05 §9). A hint only: nothing is
+ * written. O(1); worth it when the system outgrows the cache (e->prefetch). */
+void lz_edmd_fetch_ahead(const lz_edmd *e);
+
 /* The cell across face f of cell c, and in *jump what to add to r[f/2] of a particle
  * that crosses it (±L when it wraps, else 0). Precondition: f is not a wall face.
  * O(1). */
