@@ -45,6 +45,17 @@ rubric_seconds() {  # rubric_seconds STAGE
 	done | awk '{ sub(/#.*/, "") } NF >= 4 { s += $4 } END { printf "%d", s + 0.999 }'
 }
 
+# The implementation a build links for stage NN ("solutions", "assignments"), from the
+# Makefile's BUILD/impl.stamp ("01=solutions 02=assignments ..."); "?" when unknown.
+impl_of() {  # impl_of BUILD NN
+	local stamp=$1/impl.stamp
+	if [ -f "$stamp" ]; then
+		tr ' ' '\n' <"$stamp" | awk -F= -v nn="$2" '$1 == nn { print $2; f = 1 } END { if (!f) print "?" }'
+	else
+		echo "?"
+	fi
+}
+
 # The total of a report.txt that lz-report wrote, as "GOT/MAX" (empty when none).
 score_of() {  # score_of REPORT_TXT
 	sed -n 's/^Score: \([0-9.]*\/[0-9.]*\)$/\1/p' "$1" 2>/dev/null | tail -n 1
