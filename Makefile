@@ -130,7 +130,8 @@ endef
 TEST_SUITES := lib $(STAGES)
 $(foreach t,$(TEST_SUITES),$(eval $(call test_rule,$(t))))
 $(TEST_SUITES:%=$(BUILD)/tests/%): EXTRA_LIBS = $(CHECK_LIBS)
-rubrics = $(wildcard tests/$(1)/rubric tests/$(1)/rubric-* tests/$(1)/hidden/rubric)
+# A stage's rubrics in the order the lesson assigns the work (lib/tools/common.sh says how).
+rubrics = $(shell bash -c '. lib/tools/common.sh && rubrics_of "$$1"' rubrics $(1))
 TEST_BINS := $(TEST_SUITES:%=$(BUILD)/tests/%)
 
 # The report writer of the autograder links no student code.

@@ -50,10 +50,10 @@ step() {  # step NAME COMMAND...: run it, count it
 	fi
 }
 
-suite() {  # suite NAME: the Check suite tests/NAME with all its rubric files
-	local args=()
-	for r in tests/"$1"/rubric tests/"$1"/rubric-* tests/"$1"/hidden/rubric; do
-		[ -f "$r" ] && args+=(--rubric "$r")
+suite() {  # suite NAME: the Check suite tests/NAME with all its rubric files, in order
+	local args=() r
+	for r in $(bash -c '. lib/tools/common.sh && rubrics_of "$1"' suite "$1"); do
+		args+=(--rubric "$r")
 	done
 	"$build/tests/$1" "${args[@]}"
 }

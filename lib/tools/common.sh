@@ -28,12 +28,30 @@ make_tmp() {
 	trap 'rm -rf "$tmp"' EXIT
 }
 
-# The rubric files of a stage, relative to the tree root (the Makefile's list).
+# The files a stage's MANIFEST names, in its order (comments and blanks dropped).
+manifest_of() {  # manifest_of STAGE
+	sed 's/#.*//' "$ROOT/tests/$1/MANIFEST" 2>/dev/null | tr -d ' \t' | grep . || true
+}
+
+# The rubric files of a stage, relative to the tree root, in the order the lesson
+# assigns the work, which is the order `make test` and the grade report show them in:
+# tests/STAGE/rubric; then each rubric-X in the order the MANIFEST lists X.c (the
+# lesson's order: heap.c before edmd.c); a rubric-X the MANIFEST does not name after
+# them (audit.sh calls that a defect); hidden/rubric last. The Makefile asks this too.
 rubrics_of() {  # rubrics_of STAGE
-	local r
-	for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-		[ -f "$ROOT/$r" ] && echo "$r"
+	local r f named=" "
+	[ ! -f "$ROOT/tests/$1/rubric" ] || echo "tests/$1/rubric"
+	for f in $(manifest_of "$1"); do
+		r=tests/$1/rubric-$(basename "$f" .c)
+		[ -f "$ROOT/$r" ] || continue
+		echo "$r"
+		named+="$r "
 	done
+	for r in "$ROOT/tests/$1"/rubric-*; do
+		r=${r#"$ROOT/"}
+		[ ! -f "$ROOT/$r" ] || [[ $named == *" $r "* ]] || echo "$r"
+	done
+	[ ! -f "$ROOT/tests/$1/hidden/rubric" ] || echo "tests/$1/hidden/rubric"
 	return 0
 }
 
