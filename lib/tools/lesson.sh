@@ -68,7 +68,8 @@ missing_data() {  # missing_data GNUPLOT_LOG: one phrase
 		else
 			files+=("$f")
 		fi
-	done < <(sed -n 's/.*Cannot find or open file "\([^"]*\)".*/\1/p' "$1" | sort -u)
+	done < <(sed -n -e 's/.*Cannot find or open file "\([^"]*\)".*/\1/p' \
+		-e "s/.*Cannot load input from '\\([^']*\\)'.*/\\1/p" "$1" | sort -u)
 	if [ ${#steps[@]} -gt 0 ]; then
 		echo "needs the data of the failed $(printf '%s, ' "${steps[@]}" | sed 's/, $//')"
 	elif [ ${#files[@]} -gt 0 ]; then
@@ -78,7 +79,7 @@ missing_data() {  # missing_data GNUPLOT_LOG: one phrase
 	fi
 }
 
-# A failed step's data files go to OUTDIR/failed/NAME/: kept for a look, drawn by no plot.
+# A failed step's data files (and plot settings it wrote, *.gp) go to OUTDIR/failed/NAME/: kept for a look, drawn by no plot.
 set_aside() {  # set_aside NAME FILE... (relative to OUTDIR)
 	local f
 	[ $# -gt 1 ] || return 0
@@ -140,7 +141,7 @@ for src in "$lesson_dir"/*.c; do
 	run_driver "$exe" "$out/$name.log" || rc=$?
 	secs=$(elapsed "$t0" "$(now)")
 	mapfile -t made < <(cd "$out" && find . -maxdepth 1 -type f -newer .start \
-		\( -name '*.dat' -o -name '*.json' \) | sed 's|^\./||' | sort)
+		\( -name '*.dat' -o -name '*.json' -o -name '*.gp' \) | sed 's|^\./||' | sort)
 	for f in "${made[@]}"; do
 		made_by[$f]="driver $name"
 	done

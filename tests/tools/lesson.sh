@@ -3,9 +3,10 @@
 #
 # A fake lesson, lessons/99-fake/ in a temporary tree, with three drivers (shell
 # scripts in place of the compiled ones): `good` writes good.dat and exits 0,
-# `crash` writes crash.dat and aborts (SIGABRT), `stub` stops as a stub does. Its plots
-# draw good.dat, crash.dat, and both. Checked: the run exits 1; each failed driver's
-# row names its exit status, the reason and its log; its data moved to failed/NAME/;
+# `crash` writes crash.dat and plot settings crash_axes.gp and aborts (SIGABRT), `stub`
+# stops as a stub does. Its plots draw good.dat, crash.dat, both, and the settings.
+# Checked: the run exits 1; each failed driver's row names its exit status, the reason
+# and its log; its data moved to failed/NAME/;
 # the plots that need them are FAILED, naming the driver, and have no PNG; the good
 # plot is ok; no raw report of the shell ("line 71: ... Aborted") reaches the
 # terminal. Then a run with the good driver alone exits 0. Prints "N passed, M failed".
@@ -43,11 +44,15 @@ plot() {  # plot NAME DATA...: a script drawing column 1:2 of each data file
 		"$1" "${files%, }" >"$tree/lessons/99-fake/$1.gp"
 }
 driver good 'printf "0 0\n1 1\n" >"$out/good.dat"; echo "good: done"'
-driver crash 'printf "0 0\n1 2\n" >"$out/crash.dat"; echo "crash: half way"; kill -ABRT $$'
+driver crash 'printf "0 0\n1 2\n" >"$out/crash.dat"; echo "ymax = 2" >"$out/crash_axes.gp"
+echo "crash: half way"; kill -ABRT $$'
 driver stub 'echo "not implemented: lz_fake_step (assignments/99-fake/fake.c)" >&2; exit 1'
 plot good good.dat
 plot crash crash.dat
 plot both good.dat crash.dat
+printf 'load "crash_axes.gp"\n' >>"$tree/lessons/99-fake/both.gp"
+printf 'set terminal pngcairo size 300,200\nset output "axes.png"\nload "crash_axes.gp"\nplot x\n' \
+	>"$tree/lessons/99-fake/axes.gp"
 
 status=0
 (cd "$tree" && bash "$ROOT/lib/tools/lesson.sh" 99-fake build) >"$tmp/out" 2>&1 || status=$?
@@ -67,11 +72,13 @@ if command -v gnuplot >/dev/null 2>&1; then
 	expect "the plot of the crashed driver's data is FAILED, naming it" \
 		row plot crash.png "FAILED .*needs the data of the failed driver crash"
 	expect "a plot that needs both is FAILED too" row plot both.png "FAILED .*driver crash"
+	expect "a plot that loads settings the crashed driver wrote is FAILED, naming it" \
+		row plot axes.png "FAILED .*needs the data of the failed driver crash"
 	expect "no PNG stands for a failed plot" eval '[ ! -e "$out/crash.png" ] && [ ! -e "$out/both.png" ]'
 fi
 
 cp "$tmp/out" "$tmp/first"
-rm "$tree/lessons/99-fake/"{crash,stub}.c "$tree/lessons/99-fake/"{crash,both}.gp
+rm "$tree/lessons/99-fake/"{crash,stub}.c "$tree/lessons/99-fake/"{crash,both,axes}.gp
 status=0
 (cd "$tree" && bash "$ROOT/lib/tools/lesson.sh" 99-fake build) >"$tmp/out" 2>&1 || status=$?
 expect "a run whose steps all succeed exits 0 (got $status)" [ "$status" = 0 ]
