@@ -130,7 +130,8 @@ endef
 TEST_SUITES := lib $(STAGES)
 $(foreach t,$(TEST_SUITES),$(eval $(call test_rule,$(t))))
 $(TEST_SUITES:%=$(BUILD)/tests/%): EXTRA_LIBS = $(CHECK_LIBS)
-rubrics = $(wildcard tests/$(1)/rubric tests/$(1)/rubric-* tests/$(1)/hidden/rubric)
+# A stage's rubrics in the order the lesson assigns the work (lib/tools/common.sh says how).
+rubrics = $(shell bash -c '. lib/tools/common.sh && rubrics_of "$$1"' rubrics $(1))
 TEST_BINS := $(TEST_SUITES:%=$(BUILD)/tests/%)
 
 # The report writer of the autograder links no student code.
@@ -222,4 +223,4 @@ clean:
 help:
 	@echo "make deps | all | check | test STAGE=NN | grade [SUBMISSION=dir|x.tar.gz] [STAGE=NN] [ISOLATE=1]"
 	@echo "make grade-all SUBS=dir | submit | lesson STAGE=NN [QUICK=1] | demo | slides | bench | assignments | handout | mutants [STAGE=NN] | clean"
-	@echo "IMPL=solutions|assignments (now: $(CONFIG)); IMPL_NN=... for one stage; SANITIZE=1 for ASan+UBSan"
+	@echo "$(if $(wildcard solutions/.),IMPL=solutions|assignments (now: $(CONFIG)); IMPL_NN=... for one stage,your code in assignments/ (now: $(CONFIG))); SANITIZE=1 for ASan+UBSan"

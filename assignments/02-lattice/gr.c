@@ -8,7 +8,7 @@
  * You may add your own static helper functions to this file.
  *
  * Check your work with `make test STAGE=02`; see your own code at work with
- * `make lesson STAGE=02 IMPL=assignments`. Only this file's functions are graded.
+ * `make lesson STAGE=02`. Only this file's functions are graded.
  */
 #include "lz/error.h"  /* LZ_TODO() */
 

@@ -8,7 +8,7 @@
  * You may add your own static helper functions to this file.
  *
  * Check your work with `make test STAGE=05`; see your own code at work with
- * `make lesson STAGE=05 IMPL=assignments`. Only this file's functions are graded.
+ * `make lesson STAGE=05`. Only this file's functions are graded.
  */
 #include "lz/error.h"  /* LZ_TODO() */
 
@@ -29,7 +29,8 @@ double lz_edmd_pair_time(const double dr[3], const double dv[3])
 	 * no collision when it is <= 0 (a miss, or a graze with no approach). Of the two
 	 * roots take the smaller, written as c / (-b + √disc), c = dr² - 1, which never
 	 * subtracts nearly equal numbers. A touching pair (c <= 0) that approaches
-	 * collides now. See §3 "When do two spheres touch?" in lessons/05-edmd/README.md. */
+	 * collides now. See §3 "When do two spheres touch, and how do they bounce?" in
+	 * lessons/05-edmd/README.md. */
 	LZ_TODO();
 }
 
@@ -39,7 +40,7 @@ double lz_edmd_bounce(lz_edmd_particle *a, lz_edmd_particle *b, const double dr[
 	/* Hint: k = dr/|dr|; the normal relative velocity is u = (v_b - v_a)·k (< 0 when
 	 * approaching). The impulse along k is d = (1 + e_r)/2 · u: a gains d·k, b loses
 	 * it. Check with e_r = 1 that u changes sign and the energy stays. The virial is
-	 * |dr| · |d|. See §3 "The bounce". */
+	 * |dr| · |d|. See §3 "When do two spheres touch, and how do they bounce?". */
 	LZ_TODO();
 }
 
@@ -66,7 +67,7 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	 * dr = r_j + shift - r_i (the shifts of the cell's three axes), dv = v_j - v_i,
 	 * and keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
 	 * give i the key now + t in the heap (lz_heap_contains: update, else push).
-	 * See §5 "One event per particle". */
+	 * See §5 "One event per particle; counters, not deletion". */
 	LZ_TODO();
 }
 
@@ -80,6 +81,6 @@ int lz_edmd_step(lz_edmd *e)
 	 * nearest image (subtract L·rint(dx/L) on periodic axes); a face is a wall when
 	 * that axis has walls and the cell is at that edge; lz_edmd_cell_across gives
 	 * the next cell and the jump across the boundary; counters as the header says.
-	 * See §5 "The event loop". */
+	 * See §5 "One event per particle; counters, not deletion". */
 	LZ_TODO();
 }

@@ -8,7 +8,7 @@
  * You may add your own static helper functions to this file.
  *
  * Check your work with `make test STAGE=05`; see your own code at work with
- * `make lesson STAGE=05 IMPL=assignments`. Only this file's functions are graded.
+ * `make lesson STAGE=05`. Only this file's functions are graded.
  */
 #include "lz/error.h"  /* LZ_TODO() */
 
@@ -55,6 +55,6 @@ void lz_heap_update(lz_heap *h, uint32_t id, double t)
 {
 	/* Hint: k = pos[id]; write the new key; an earlier key can only break the order
 	 * with the parents (sift up), a later one only with the children (sift down).
-	 * See §4 "The heap" and §5 "Counters, not deletion". */
+	 * See §4 "The heap" and §5 "One event per particle; counters, not deletion". */
 	LZ_TODO();
 }

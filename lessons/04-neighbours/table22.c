@@ -10,9 +10,9 @@
  * overlaps. Each driver runs at its own best skin (skin_of below), refreshed at the
  * safe interval floor(Δr / 2) sweeps.
  *
- * What to expect. NL rebuilds its lists from all pairs, N²/2 distances every 2 sweeps:
- * per atom-step that is N/4 distances, so its speed falls as 1/N once the rebuild
- * dominates. FNL refreshes from the neighbours of the neighbours, CL re-bins: O(1)
+ * What to expect. NL rebuilds its lists from all pairs, N²/2 distances every 16 sweeps
+ * (skin 32): per atom-step that is N/32 distances, so its speed falls as 1/N once the
+ * rebuild dominates. FNL refreshes from the neighbours of the neighbours, CL re-bins: O(1)
  * per atom-step, so their speed is flat but for the caches (the thesis: 337/397 and
  * 199/216 from 1100 to 70 400). FR does one look-up per step but repaints the
  * perimeter of the excluded disk: flat and slower. Speed: atom-steps per CPU second
@@ -47,7 +47,7 @@
 
 static const int64_t side_of[MAXSIDE] = {1024, 2048, 4096, 8192, 16384, 32768};
 /* Each driver's skin, from skin.c at N = 4400: FNL 32, its fastest skin that misses
- * nothing (shorter lists lose pairs, lesson §10: r_l = 57, refreshed every 16 sweeps);
+ * nothing (shorter lists lose pairs, lesson 04 §10: r_l = 57, refreshed every 16 sweeps);
  * NL the same lists, so that the two differ only in how they refresh (NL alone would
  * gain from a thicker skin still); CL 7, at its best (r_l = 32: cells of 32, re-binned
  * every 3 sweeps); FR has none. */

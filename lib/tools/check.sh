@@ -2,9 +2,11 @@
 # make check — the test command: every suite against the reference must pass 100 %,
 # the committed assignments must be current, the stub audit and the grader
 # fixtures must pass, a realistic bug in every graded function must fail the tests
-# that call it (one mutant each; `make mutants` runs them all), and the handout must
-# work along the student's path (make test, make submit, make grade), and lz-mpi must
-# equal the serial run on 1 to 4 processes (skipped without MPI). Usage: check.sh BUILD "STAGES"
+# that call it (one mutant each; `make mutants` runs them all), `make lesson` must
+# report a failing driver and the plots it breaks (tests/tools/lesson.sh), the
+# handout must work along the student's path (make test, make submit, make grade),
+# and lz-mpi must equal the serial run on 1 to 4 processes (skipped without MPI).
+# Usage: check.sh BUILD "STAGES"
 set -uo pipefail
 build=$1
 stages=$2
@@ -48,10 +50,10 @@ step() {  # step NAME COMMAND...: run it, count it
 	fi
 }
 
-suite() {  # suite NAME: the Check suite tests/NAME with all its rubric files
-	local args=()
-	for r in tests/"$1"/rubric tests/"$1"/rubric-* tests/"$1"/hidden/rubric; do
-		[ -f "$r" ] && args+=(--rubric "$r")
+suite() {  # suite NAME: the Check suite tests/NAME with all its rubric files, in order
+	local args=() r
+	for r in $(bash -c '. lib/tools/common.sh && rubrics_of "$1"' suite "$1"); do
+		args+=(--rubric "$r")
 	done
 	"$build/tests/$1" "${args[@]}"
 }
@@ -60,6 +62,7 @@ step "suite lib" suite lib
 for s in $stages; do
 	step "suite $s (reference solutions)" suite "$s"
 done
+step "make lesson with a failing driver (a fake lesson)" bash tests/tools/lesson.sh
 step "assignments/ is generated from solutions/" bash lib/tools/mkassign.sh solutions assignments --check
 step "stub audit" bash tests/grade/audit.sh "$build" "$stages"
 # The mutant sample and the fixtures are each mostly one process at a time (a test

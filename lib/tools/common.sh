@@ -28,12 +28,30 @@ make_tmp() {
 	trap 'rm -rf "$tmp"' EXIT
 }
 
-# The rubric files of a stage, relative to the tree root (the Makefile's list).
+# The files a stage's MANIFEST names, in its order (comments and blanks dropped).
+manifest_of() {  # manifest_of STAGE
+	sed 's/#.*//' "$ROOT/tests/$1/MANIFEST" 2>/dev/null | tr -d ' \t' | grep . || true
+}
+
+# The rubric files of a stage, relative to the tree root, in the order the lesson
+# assigns the work, which is the order `make test` and the grade report show them in:
+# tests/STAGE/rubric; then each rubric-X in the order the MANIFEST lists X.c (the
+# lesson's order: heap.c before edmd.c); a rubric-X the MANIFEST does not name after
+# them (audit.sh calls that a defect); hidden/rubric last. The Makefile asks this too.
 rubrics_of() {  # rubrics_of STAGE
-	local r
-	for r in "tests/$1/rubric" "tests/$1"/rubric-* "tests/$1/hidden/rubric"; do
-		[ -f "$ROOT/$r" ] && echo "$r"
+	local r f named=" "
+	[ ! -f "$ROOT/tests/$1/rubric" ] || echo "tests/$1/rubric"
+	for f in $(manifest_of "$1"); do
+		r=tests/$1/rubric-$(basename "$f" .c)
+		[ -f "$ROOT/$r" ] || continue
+		echo "$r"
+		named+="$r "
 	done
+	for r in "$ROOT/tests/$1"/rubric-*; do
+		r=${r#"$ROOT/"}
+		[ ! -f "$ROOT/$r" ] || [[ $named == *" $r "* ]] || echo "$r"
+	done
+	[ ! -f "$ROOT/tests/$1/hidden/rubric" ] || echo "tests/$1/hidden/rubric"
 	return 0
 }
 
@@ -43,6 +61,17 @@ rubric_seconds() {  # rubric_seconds STAGE
 	for r in $(rubrics_of "$1"); do
 		cat "$ROOT/$r"
 	done | awk '{ sub(/#.*/, "") } NF >= 4 { s += $4 } END { printf "%d", s + 0.999 }'
+}
+
+# The implementation a build links for stage NN ("solutions", "assignments"), from the
+# Makefile's BUILD/impl.stamp ("01=solutions 02=assignments ..."); "?" when unknown.
+impl_of() {  # impl_of BUILD NN
+	local stamp=$1/impl.stamp
+	if [ -f "$stamp" ]; then
+		tr ' ' '\n' <"$stamp" | awk -F= -v nn="$2" '$1 == nn { print $2; f = 1 } END { if (!f) print "?" }'
+	else
+		echo "?"
+	fi
 }
 
 # The total of a report.txt that lz-report wrote, as "GOT/MAX" (empty when none).

@@ -196,20 +196,11 @@ emit_stage() {
 		return
 	fi
 	printf '<p class="meta">Lesson text: <code>lessons/%s/README.md</code> · implementation: <code>%s</code> · data and logs: <code>%s</code></p>\n' \
-		"$stage" "$(impl_of "$nn")" "$out"
+		"$stage" "$(impl_of "$build" "$nn")" "$out"
 	emit_plots "$stage" "$nn" "$out"
 	emit_headlines "$stage" "$out"
 	emit_runs "$nn" "$out"
 	echo '</section>'
-}
-
-impl_of() {
-	local stamp=$build/impl.stamp
-	if [ -f "$stamp" ]; then
-		tr ' ' '\n' <"$stamp" | awk -F= -v nn="$1" '$1 == nn { print $2; f = 1 } END { if (!f) print "?" }'
-	else
-		echo "?"
-	fi
 }
 
 machine() {

@@ -113,6 +113,15 @@ if student_make help 2>&1 | grep -q 'now:.*=solutions'; then
 else
 	echo "  ok  IMPL defaults to assignments"
 fi
+# IMPL=assignments is the student's default: no text of theirs may ask for it (the
+# Makefile and the tools that set it are the mechanism, not advice).
+advice=$( (grep -rlF "IMPL=assignments" "$tree" --include='*.md' --include='*.c' --include='*.h' \
+	--include='*.gp' --include='*.scene' || true) | sed "s|$tree/||")
+if [ -n "$advice" ] || student_make help 2>&1 | grep -qF "IMPL=assignments"; then
+	fail "the handout advises IMPL=assignments, its default, in: ${advice:-make help}"
+else
+	echo "  ok  no lesson, slide, stub, README or make help advises IMPL=assignments"
+fi
 t0=$SECONDS
 if student_make all >"$tmp/all.log" 2>&1; then
 	echo "  ok  make all builds ($((SECONDS - t0)) s)"

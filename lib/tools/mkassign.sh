@@ -46,7 +46,7 @@ banner() {  # banner NN-name
  * You may add your own static helper functions to this file.
  *
  * Check your work with \`make test STAGE=$nn\`; see your own code at work with
- * \`make lesson STAGE=$nn IMPL=assignments\`. Only this file's functions are graded.
+ * \`make lesson STAGE=$nn\`. Only this file's functions are graded.
  */
 #include "lz/error.h"  /* LZ_TODO() */
 

@@ -15,7 +15,8 @@ double lz_edmd_pair_time(const double dr[3], const double dv[3])
 	 * no collision when it is <= 0 (a miss, or a graze with no approach). Of the two
 	 * roots take the smaller, written as c / (-b + √disc), c = dr² - 1, which never
 	 * subtracts nearly equal numbers. A touching pair (c <= 0) that approaches
-	 * collides now. See §3 "When do two spheres touch?" in lessons/05-edmd/README.md. */
+	 * collides now. See §3 "When do two spheres touch, and how do they bounce?" in
+	 * lessons/05-edmd/README.md. */
 	/* LZ_SOLUTION_BEGIN */
 	double b = dr[0] * dv[0] + dr[1] * dv[1] + dr[2] * dv[2];
 	if (b >= 0)
@@ -37,7 +38,7 @@ double lz_edmd_bounce(lz_edmd_particle *a, lz_edmd_particle *b, const double dr[
 	/* Hint: k = dr/|dr|; the normal relative velocity is u = (v_b - v_a)·k (< 0 when
 	 * approaching). The impulse along k is d = (1 + e_r)/2 · u: a gains d·k, b loses
 	 * it. Check with e_r = 1 that u changes sign and the energy stays. The virial is
-	 * |dr| · |d|. See §3 "The bounce". */
+	 * |dr| · |d|. See §3 "When do two spheres touch, and how do they bounce?". */
 	/* LZ_SOLUTION_BEGIN */
 	double d = sqrt(dr[0] * dr[0] + dr[1] * dr[1] + dr[2] * dr[2]);
 	double k[3] = {dr[0] / d, dr[1] / d, dr[2] / d};
@@ -168,7 +169,7 @@ void lz_edmd_predict(lz_edmd *e, uint32_t i)
 	 * dr = r_j + shift - r_i (the shifts of the cell's three axes), dv = v_j - v_i,
 	 * and keep the earliest lz_edmd_pair_time with the partner's count. Store ev[i] and
 	 * give i the key now + t in the heap (lz_heap_contains: update, else push).
-	 * See §5 "One event per particle". */
+	 * See §5 "One event per particle; counters, not deletion". */
 	/* LZ_SOLUTION_BEGIN */
 	const lz_edmd_particle *pi = &e->p[i];
 	double ri[3], vi[3];
@@ -272,7 +273,7 @@ int lz_edmd_step(lz_edmd *e)
 	 * nearest image (subtract L·rint(dx/L) on periodic axes); a face is a wall when
 	 * that axis has walls and the cell is at that edge; lz_edmd_cell_across gives
 	 * the next cell and the jump across the boundary; counters as the header says.
-	 * See §5 "The event loop". */
+	 * See §5 "One event per particle; counters, not deletion". */
 	/* LZ_SOLUTION_BEGIN */
 	uint32_t i = lz_heap_top(e->heap);
 	double t = lz_heap_top_t(e->heap);

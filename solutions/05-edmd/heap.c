@@ -95,7 +95,7 @@ void lz_heap_update(lz_heap *h, uint32_t id, double t)
 {
 	/* Hint: k = pos[id]; write the new key; an earlier key can only break the order
 	 * with the parents (sift up), a later one only with the children (sift down).
-	 * See §4 "The heap" and §5 "Counters, not deletion". */
+	 * See §4 "The heap" and §5 "One event per particle; counters, not deletion". */
 	/* LZ_SOLUTION_BEGIN */
 	size_t k = h->pos[id];
 	double old = h->node[k].t;

@@ -9,7 +9,8 @@
 # within the rubric's budget, the rubric and the suite must agree (the runner refuses
 # otherwise: its message is shown) and lz-report must grade the stage 0. Built with
 # IMPL=solutions, every test must pass and the grade must be 100%. Both run under the
-# grader's file limit, so a test that floods Check's channel fails here first.
+# grader's file limit, so a test that floods Check's channel fails here first. The
+# tests must come in the lesson's order (audit_order).
 # Prints `audit: N passed, M failed` (one count per test and per stage-wide check)
 # and exits non-zero on any failure.
 # shellcheck source=lib/tools/common.sh
@@ -107,10 +108,32 @@ grade() {  # grade STAGE
 	score_of "$tmp/report/report.txt" | tr / ' '
 }
 
+# The tests come in the lesson's order: every rubric-X belongs to a file X.c that the
+# MANIFEST names (rubrics_of orders the rubrics by it), and the runner reports the
+# tests in the rubrics' order (the last run's output).
+audit_order() {  # audit_order STAGE
+	local st=$1 r x
+	for r in tests/"$st"/rubric-*; do
+		[ -f "$r" ] || continue
+		x=${r##*/rubric-}
+		if manifest_of "$st" | grep -q "/$x\.c\$"; then
+			ok
+		else
+			defect "$r: tests/$st/MANIFEST names no $x.c, so its tests have no place in the lesson's order"
+		fi
+	done
+	if [ "$(grep '^LZRESULT' "$tmp/out" | cut -f2)" = "$(rubric_tests "$st")" ]; then
+		ok
+	else
+		defect "$st: the runner did not report the tests in the rubrics' order"
+	fi
+}
+
 audit_stubs() {  # audit_stubs STAGE
 	local st=$1 name word msg got max
 	echo "audit: $st against the stubs"
 	run "$st" assignments || return 0
+	audit_order "$st"
 	while IFS=$'\t' read -r _ name word msg; do
 		case $word in
 		pass) defect "test $name passes on the stub: it cannot fail" ;;

@@ -13,7 +13,10 @@
  *     kahan_exact_on_cancellation   3       visible     5
  *
  * visibility is Gradescope's: visible | hidden | after_due_date | after_published.
- * In a graded suite every LZ_TEST must be in a rubric and every rubric line must name
+ * The tests run, and the reports list them, in the rubrics' order: the lesson's. A
+ * rubric lists its tests in the order of the lesson's assignment table; a stage's
+ * rubric-X files come in the order its MANIFEST names X.c (rubrics_of in
+ * lib/tools/common.sh, which `make test` and the grader ask). In a graded suite every LZ_TEST must be in a rubric and every rubric line must name
  * an LZ_TEST: the runner refuses to run otherwise.
  *
  * Failure messages speak physics: say what was measured, what was expected and the

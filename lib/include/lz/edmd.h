@@ -33,7 +33,7 @@
  * neighbours. Cost per event O(1) at fixed density; Miller & Luding find the fewest
  * events per second wasted at C/N ≈ 1.5 cells per particle (2D) and ≈ 8 (3D) in a
  * dilute gas, and as many cells as fit (side σ) in a dense one; in 3D this engine's
- * minimum is broad (C/N 3 to 10 within the noise, lesson 05 §6) and
+ * minimum is broad (C/N 1.5 to 10 within 12 % of the cheapest, lesson 05 §6) and
  * lz_edmd_auto_cells takes 3, which needs fewer bytes.
  *
  * Round-off (DynamO). A double holds 16 digits: an absolute time of 10^12 leaves a
