@@ -5,6 +5,10 @@
 
 #include "interrupt.h"
 
+/* The signal lz_guard_end sends the thread to end it (a cancelled thread trips the
+ * address sanitizer); one that comes from elsewhere while the guard is on is ignored. */
+#define STOP SIGUSR2
+
 /* The partial directory moved aside first, so that a file the run opens meanwhile
  * cannot land in it while it is being removed. */
 static void remove_partial(lz_rundir *d)
@@ -18,15 +22,20 @@ static void remove_partial(lz_rundir *d)
 	d->tmp[0] = '\0';
 }
 
-/* Wait for a signal, clean up, end by that signal. The lock is never given back: the
- * run can no longer commit, nor return and exit before the directory is gone. */
+/* Wait for a signal, clean up, end by that signal; or end when lz_guard_end says so
+ * (STOP, with the flag set). The lock is never given back after a signal: the run can
+ * no longer commit, nor return and exit before the directory is gone. */
 static void *guard_thread(void *arg)
 {
 	lz_guard *g = arg;
-	int sig;
-	if (sigwait(&g->signals, &sig) != 0)
-		return NULL;
-	pthread_setcancelstate(PTHREAD_CANCEL_DISABLE, NULL);  /* the signal is ours now */
+	int sig = 0;
+	while (sigwait(&g->signals, &sig) == 0 && sig == STOP) {
+		pthread_mutex_lock(&g->lock);
+		int stop = g->stop;
+		pthread_mutex_unlock(&g->lock);
+		if (stop)
+			return NULL;
+	}
 	pthread_mutex_lock(&g->lock);
 	char msg[sizeof g->dir->final + 160];
 	if (g->dir->tmp[0]) {
@@ -55,8 +64,10 @@ void lz_guard_begin(lz_guard *g, lz_rundir *dir)
 {
 	g->dir = dir;
 	g->committed = 0;
+	g->stop = 0;
 	g->active = 0;
 	sigemptyset(&g->signals);
+	sigaddset(&g->signals, STOP);
 	sigaddset(&g->signals, SIGINT);
 	sigaddset(&g->signals, SIGTERM);
 	sigaddset(&g->signals, SIGHUP);
@@ -87,11 +98,11 @@ void lz_guard_end(lz_guard *g)
 {
 	if (!g->active)
 		return;
-	/* Under the lock the thread is in sigwait, a cancellation point, or has a signal
-	 * and no longer listens to the cancel (then it ends the process). */
+	/* A thread that took a signal first ends the process instead. */
 	pthread_mutex_lock(&g->lock);
-	pthread_cancel(g->thread);
+	g->stop = 1;
 	pthread_mutex_unlock(&g->lock);
+	pthread_kill(g->thread, STOP);
 	pthread_join(g->thread, NULL);
 	pthread_mutex_destroy(&g->lock);
 	pthread_sigmask(SIG_SETMASK, &g->old, NULL);

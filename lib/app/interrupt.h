@@ -21,10 +21,12 @@
 typedef struct {
 	lz_rundir *dir;        /* the run directory (its tmp is removed when interrupted) */
 	int committed;         /* set by the run once the directory is committed */
+	int stop;              /* set by lz_guard_end: the thread is to end */
 	pthread_t thread;      /* the thread that waits for the signals */
 	pthread_mutex_t lock;  /* held by the run around begin, commit and abort, and by
 	                          the thread from a signal on */
-	sigset_t signals, old; /* the signals taken; the mask before lz_guard_begin */
+	sigset_t signals, old; /* the signals taken (and the thread's stop signal,
+	                          SIGUSR2); the mask before lz_guard_begin */
 	int active;            /* 1 while the thread runs */
 } lz_guard;
 
