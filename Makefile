@@ -51,7 +51,7 @@ WARN := -Wall -Wextra -Werror -Wno-unused-parameter -Wshadow -Wstrict-prototypes
 OPT ?= -O2
 CFLAGS ?= $(OPT) -g
 CFLAGS += -std=c11 -D_XOPEN_SOURCE=700 $(WARN) -Ilib/include
-LDLIBS := -lm
+LDLIBS := -lm -pthread  # -pthread: lz takes SIGINT and SIGTERM in a thread of its own
 ifeq ($(SANITIZE),1)
 CFLAGS += -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 LDFLAGS += -fsanitize=address,undefined

@@ -691,6 +691,18 @@ lz_nwalk_params lz_nwalk_params_for(lz_nwalk_driver d, lz_lattice_kind kind, int
 	return p;
 }
 
+double lz_nwalk_fnl_skin(lz_lattice_kind kind, int64_t side, double radius, size_t n)
+{
+	int dim = lz_lattice_dim(kind);
+	double eta = lz_walk_packing(kind, side, radius, n), lmax = longest_step(kind);
+	/* an ideal gas of density η/v1 holds η·(r/R)^dim particles within r of one */
+	double rl = radius * pow(LZ_NWALK_FNL_ENTRIES / eta, 1.0 / dim);
+	double rc = 2 * radius + lmax, skin = ceil(rl - rc);
+	double most = floor((double)side / 2 - rc);  /* r_l <= L/2 */
+	skin = skin < most ? skin : most;
+	return skin > 2 * lmax ? skin : ceil(2 * lmax);
+}
+
 lz_nwalk *lz_nwalk_alloc_seeded(const lz_nwalk_params *p, unsigned long seed)
 {
 	lz_rng *rng = lz_rng_alloc("mt19937", seed);

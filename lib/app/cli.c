@@ -12,10 +12,12 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "lz/error.h"
 #include "method.h"
 #include "lz/output.h"
 #include "lz/rng.h"
+#include "run_table.h"
 #include "scene.h"
 #include "lz/timer.h"
 
@@ -167,45 +169,83 @@ static void log_seeds(const lz_scene *s, const lz_method *m)
 
 /* Remove the partial directory, keeping the message of the failure itself (removing
  * may report errors of its own). */
-static int run_fail(lz_rundir *d, int rc)
+static int run_fail(lz_guard *g, int rc)
 {
 	char msg[2048];
 	if (lz_cli_code == LZ_OK)  /* a method that failed without saying why */
 		lz_error(rc, "the run failed (%s)", lz_strerror(rc));
 	snprintf(msg, sizeof msg, "%s", lz_error_message());
-	lz_rundir_abort(d);
+	lz_guard_hold(g);
+	lz_rundir_abort(g->dir);
+	lz_guard_release(g);
 	return lz_error(rc, "%s", msg);
 }
 
-/* Run a bound scene into its directory: parameters, the method's results, wall_s. */
-static int run_execute(const lz_scene *s, const lz_method *m, const char *out,
-                              int quiet)
+/* The run directory, or LZ_EINVAL: an --out that cannot be made is bad input, and
+ * nothing is created. */
+static int run_begin(lz_guard *g, const char *out)
 {
-	lz_rundir d;
-	char path[4200];
-	int rc = lz_rundir_begin(&d, out);
-	if (rc != LZ_OK)
+	lz_guard_hold(g);
+	int rc = lz_rundir_begin(g->dir, out);
+	lz_guard_release(g);
+	if (rc == LZ_OK || rc == LZ_EINVAL)
 		return rc;
-	if ((rc = lz_rundir_file(&d, "summary.json", path, sizeof path)) != LZ_OK)
-		return run_fail(&d, rc);
-	lz_json *j = lz_json_open(path);
+	char msg[2048];
+	snprintf(msg, sizeof msg, "%s", lz_error_message());
+	return lz_error(LZ_EINVAL, "cannot make the run directory '%s': %s (choose another "
+	                "--out)", out, msg);
+}
+
+/* The parameters, the method's results and wall_s into summary.json, written as
+ * summary.json.partial and renamed when complete: a summary.json is never cut short. */
+static int run_method(const lz_scene *s, const lz_method *m, lz_rundir *d, int quiet)
+{
+	char part[4200], path[4200];
+	int rc = lz_rundir_file(d, "summary.json.partial", part, sizeof part);
+	if (rc == LZ_OK)
+		rc = lz_rundir_file(d, "summary.json", path, sizeof path);
+	lz_json *j = rc == LZ_OK ? lz_json_open(part) : NULL;
 	if (!j)
-		return run_fail(&d, lz_cli_code);
+		return rc != LZ_OK ? rc : lz_cli_code;
 	lz_scene_json(s, j);
-	lz_run run = {&d, j, quiet};
+	lz_run run = {d, j, quiet};
 	lz_cli_code = LZ_OK;
 	double t0 = lz_wall_now();
 	rc = m->run(s, &run);
 	lz_json_num(j, "wall_s", lz_wall_now() - t0);
 	int rc_json = lz_json_end(j);
 	rc = rc != LZ_OK ? rc : rc_json;
-	if (rc == LZ_OK)
+	if (rc == LZ_OK && rename(part, path) != 0)
+		rc = lz_error(LZ_EIO, "cannot rename '%s' to '%s'", part, path);
+	return rc;
+}
+
+/* Run a bound scene into its directory; then, unless quiet, the directory on stderr
+ * and the table of results on stdout. */
+static int run_execute(const lz_scene *s, const lz_method *m, const char *out,
+                       int quiet)
+{
+	lz_rundir d;
+	lz_guard g;
+	d.final[0] = d.tmp[0] = '\0';
+	lz_guard_begin(&g, &d);
+	int rc = run_begin(&g, out);
+	if (rc == LZ_OK && (rc = run_method(s, m, &d, quiet)) == LZ_OK) {
+		lz_guard_hold(&g);
 		rc = lz_rundir_commit(&d);
-	if (rc != LZ_OK)
-		return run_fail(&d, rc);
-	if (!quiet)
-		fprintf(stderr, "lz: results in %s/\n", d.final);
-	return LZ_OK;
+		g.committed = rc == LZ_OK;
+		lz_guard_release(&g);
+	}
+	if (rc != LZ_OK && d.tmp[0])
+		rc = run_fail(&g, rc);
+	lz_guard_end(&g);
+	if (rc != LZ_OK || quiet)
+		return rc;
+	char path[4200];
+	fprintf(stderr, "lz: results in %s/\n", d.final);
+	fflush(stderr);
+	snprintf(path, sizeof path, "%s/summary.json", d.final);
+	return lz_run_table(stdout, m, lz_scene_name(s), path);
 }
 
 static int cmd_run(int argc, char **argv)
@@ -292,37 +332,69 @@ static int cmd_list(void)
 
 /* ---- lz help ---- */
 
-/* Columns of `lz help METHOD`, a Markdown table that also reads well in a terminal. */
+/* Every line of `lz help` fits a terminal of HELP_WIDTH columns: long cells wrap. */
+enum { HELP_WIDTH = 100, RANGE_MAX = 20, CELL = 512, LINES_MAX = 16 };
+
+/* Columns of `lz help METHOD`, a Markdown table that also reads well in a terminal; a
+ * key's long cells go on in the rows below it, whose other cells are empty. */
 enum { COL_KEY, COL_TYPE, COL_DEFAULT, COL_RANGE, COL_HELP, NCOLS };
 static const char *const lz_cli_help_heads[NCOLS] = {"key", "type", "default", "range",
                                                      "meaning"};
 
-/* Characters, not bytes: units are UTF-8 (σ, τ). */
-static int text_width(const char *s)
+/* The first line of t, at most width characters, broken at a space when one fits (a
+ * longer word is cut), into line (CELL bytes); the rest of t, or NULL when done. */
+static const char *wrap_next(const char *t, int width, char *line)
 {
-	int w = 0;
-	for (; *s; s++)
-		w += ((unsigned char)*s & 0xc0) != 0x80;
-	return w;
+	t += strspn(t, " ");
+	const char *p = t, *space = NULL;
+	for (int w = 0; *p && w < width; w++) {
+		if (*p == ' ')
+			space = p;
+		for (p++; ((unsigned char)*p & 0xc0) == 0x80; p++)
+			;
+	}
+	const char *end = !*p || *p == ' ' || !space ? p : space;
+	size_t n = (size_t)(end - t) < CELL - 1 ? (size_t)(end - t) : CELL - 1;
+	memcpy(line, t, n);
+	while (n > 0 && line[n - 1] == ' ')
+		n--;
+	line[n] = '\0';
+	end += strspn(end, " ");
+	return *end ? end : NULL;
 }
 
-/* The cells of one key's row (each 256 bytes). */
-static void help_row(const lz_key *k, char cell[NCOLS][256])
+/* text after lead, wrapped to HELP_WIDTH; the lines after the first indented. */
+static void print_wrapped(const char *lead, int indent, const char *text)
 {
-	static const char *const types[] = {"int", "real", "enum", "seed", "bool", "text"};
+	char line[CELL];
+	int width = HELP_WIDTH - lz_text_width(lead);
+	printf("%s", lead);
+	for (const char *t = text; t; width = HELP_WIDTH - indent) {
+		t = wrap_next(t, width, line);
+		printf("%s\n", line);
+		if (t)
+			printf("%*s", indent, "");
+	}
+}
+
+/* The cells of one key's row (each CELL bytes). */
+static void help_row(const lz_key *k, char cell[NCOLS][CELL])
+{
+	static const char *const types[] = {"int", "real", "enum", "seed", "bool", "text",
+	                                    "path"};
 	const char *unit = k->unit && *k->unit ? k->unit : NULL;
-	snprintf(cell[COL_KEY], 256, "%s", k->name);
-	snprintf(cell[COL_TYPE], 256, "%s", (unsigned)k->type < 6 ? types[k->type] : "?");
-	snprintf(cell[COL_DEFAULT], 256, "%s", !k->def ? "required" : *k->def ? k->def : "none");
+	snprintf(cell[COL_KEY], CELL, "%s", k->name);
+	snprintf(cell[COL_TYPE], CELL, "%s", (unsigned)k->type < 7 ? types[k->type] : "?");
+	snprintf(cell[COL_DEFAULT], CELL, "%s", !k->def ? "required" : *k->def ? k->def : "none");
 	switch (k->type) {
 	case LZ_KEY_INT:
 	case LZ_KEY_REAL:
-		snprintf(cell[COL_RANGE], 256, "%c%g, %g%c%s%s", k->min_open ? '(' : '[', k->min,
+		snprintf(cell[COL_RANGE], CELL, "%c%g, %g%c%s%s", k->min_open ? '(' : '[', k->min,
 		         k->max, k->max_open ? ')' : ']', unit ? " " : "", unit ? unit : "");
 		break;
 	case LZ_KEY_ENUM: {
 		/* Markdown tables split cells at '|': list the choices with commas. */
-		char *w = cell[COL_RANGE], *end = w + 250;
+		char *w = cell[COL_RANGE], *end = w + CELL - 6;
 		for (const char *c = k->choices ? k->choices : ""; *c && w < end; c++) {
 			if (*c == '|')
 				*w++ = ',', *w++ = ' ';
@@ -333,49 +405,104 @@ static void help_row(const lz_key *k, char cell[NCOLS][256])
 		break;
 	}
 	case LZ_KEY_SEED:
-		snprintf(cell[COL_RANGE], 256, "auto or [1, %lu]", LZ_SEED_MAX);
+		snprintf(cell[COL_RANGE], CELL, "auto or [1, %lu]", LZ_SEED_MAX);
 		break;
 	case LZ_KEY_BOOL:
-		snprintf(cell[COL_RANGE], 256, "true, false");
+		snprintf(cell[COL_RANGE], CELL, "true, false");
+		break;
+	case LZ_KEY_PATH:
+		snprintf(cell[COL_RANGE], CELL, "a file");
 		break;
 	default:
-		snprintf(cell[COL_RANGE], 256, "text");
+		snprintf(cell[COL_RANGE], CELL, "text");
 		break;
 	}
-	snprintf(cell[COL_HELP], 256, "%s", k->help ? k->help : "");
+	snprintf(cell[COL_HELP], CELL, "%s", k->help ? k->help : "");
 }
 
-static void help_line(char cell[NCOLS][256], const int *width)
+static void help_line(char cell[NCOLS][CELL], const int *width)
 {
 	for (int c = 0; c < NCOLS; c++)
-		printf("| %s%*s ", cell[c], width[c] - text_width(cell[c]), "");
+		printf("| %s%*s ", cell[c], width[c] - lz_text_width(cell[c]), "");
 	printf("|\n");
+}
+
+/* One key's row, its range and meaning wrapped into the rows below. */
+static void help_key(char cell[NCOLS][CELL], const int *width)
+{
+	char line[NCOLS][CELL];
+	const char *rest[NCOLS] = {NULL};
+	for (int c = 0; c < NCOLS; c++)
+		rest[c] = cell[c];
+	for (int k = 0; k < LINES_MAX && (rest[COL_RANGE] || rest[COL_HELP]); k++) {
+		for (int c = 0; c < NCOLS; c++) {
+			line[c][0] = '\0';
+			if (rest[c])
+				rest[c] = wrap_next(rest[c], width[c], line[c]);
+		}
+		help_line(line, width);
+	}
 }
 
 static void help_method(const lz_method *m)
 {
-	char (*rows)[NCOLS][256] = calloc(m->keys.n + 2, sizeof *rows);
+	char (*rows)[NCOLS][CELL] = calloc(m->keys.n + 2, sizeof *rows);
 	if (!rows) {
 		lz_error(LZ_ENOMEM, "no memory for the key table");
 		return;
 	}
-	int width[NCOLS] = {0};
+	int width[NCOLS] = {0}, used = 1;
 	for (int c = 0; c < NCOLS; c++)
-		snprintf(rows[0][c], 256, "%s", lz_cli_help_heads[c]);
+		snprintf(rows[0][c], CELL, "%s", lz_cli_help_heads[c]);
 	for (size_t i = 0; i < m->keys.n; i++)
 		help_row(&m->keys.key[i], rows[i + 2]);
 	for (size_t i = 0; i < m->keys.n + 2; i++)
-		for (int c = 0; c < NCOLS; c++)
-			if (text_width(rows[i][c]) > width[c])
-				width[c] = text_width(rows[i][c]);
+		for (int c = 0; c < COL_HELP; c++)
+			if (lz_text_width(rows[i][c]) > width[c])
+				width[c] = lz_text_width(rows[i][c]);
+	if (width[COL_RANGE] > RANGE_MAX)
+		width[COL_RANGE] = RANGE_MAX;
+	for (int c = 0; c < COL_HELP; c++)
+		used += width[c] + 3;
+	width[COL_HELP] = HELP_WIDTH - used - 3;
 	for (int c = 0; c < NCOLS; c++)
 		memset(rows[1][c], '-', (size_t)width[c]);
-	printf("method %s: %s\n\nkey = value lines; `method = %s` picks this method.\n\n",
-	       m->name, m->help, m->name);
-	for (size_t i = 0; i < m->keys.n + 2; i++)
-		help_line(rows[i], width);
+	char lead[64];
+	snprintf(lead, sizeof lead, "method %s: ", m->name);
+	print_wrapped(lead, 2, m->help);
+	printf("\nkey = value lines; `method = %s` picks this method.\n\n", m->name);
+	help_line(rows[0], width);
+	help_line(rows[1], width);
+	for (size_t i = 2; i < m->keys.n + 2; i++)
+		help_key(rows[i], width);
 	free(rows);
 }
+
+/* What `lz help` says besides the usage: how a run reads its scene, where its output
+ * goes, how it ends. Lines of at most HELP_WIDTH columns. */
+static const char lz_cli_help_text[] =
+	"\n"
+	"lz run SCENE  SCENE is a scene file, or the name of one in the scene directory.\n"
+	"  key=value   The command line wins over the scene: key=value replaces the scene's\n"
+	"              value; key= (nothing after '=') unsets it, so that its default applies;\n"
+	"              a key of a group of alternatives (steps or time, events or time, n or\n"
+	"              packing) unsets the others the scene gives: `lz run S time=10` on a\n"
+	"              scene with events = 100 runs for the time.\n"
+	"              A relative file name in the scene (config = x.dat) is read from the\n"
+	"              scene's directory; on the command line, from the current one.\n"
+	"  --out DIR   the run directory (default build/runs/<scene name>). The run is written\n"
+	"              into DIR.partial-<pid>, which replaces DIR only when the run succeeded;\n"
+	"              a run that fails or is interrupted (Ctrl-C, SIGTERM, SIGHUP) removes it\n"
+	"              and leaves DIR as it was. The summary is DIR/summary.json.\n"
+	"  --quiet     no progress line, seed log, warning, \"results in\" line or table.\n"
+	"  output      on stderr the progress, the seed of seed = auto, warnings and the line\n"
+	"              `lz: results in DIR/`; then on stdout the table of results: the\n"
+	"              headline observables of summary.json with their error bars (the error\n"
+	"              to 2 significant digits, the value to the same place) and references,\n"
+	"              the speed and the seed.\n"
+	"  exit status 0 done; 1 the run failed (a physics guard, an I/O error); 2 bad input\n"
+	"              (usage, scene file, key, value, an --out that cannot be made), with\n"
+	"              nothing written; 128 + N when killed by signal N (130: Ctrl-C).\n";
 
 static int cmd_help(int argc, char **argv)
 {
@@ -394,10 +521,17 @@ static int cmd_help(int argc, char **argv)
 	size_t n;
 	const lz_method *const *m = lz_methods(&n);
 	fputs(lz_cli_usage_text, stdout);
+	fputs(lz_cli_help_text, stdout);
 	printf("\nmethods (`lz help METHOD` lists a method's keys):\n");
-	for (size_t i = 0; i < n; i++)
-		printf("  %-12s %s\n", m[i]->name, m[i]->help);
-	printf("\nscenes are looked up in %s (`lz list`)\n", lz_scene_dir());
+	for (size_t i = 0; i < n; i++) {
+		char lead[64];
+		snprintf(lead, sizeof lead, "  %-12s ", m[i]->name);
+		print_wrapped(lead, 15, m[i]->help);
+	}
+	char where[4200];
+	snprintf(where, sizeof where, "%s (`lz list`)", lz_scene_dir());
+	printf("\n");
+	print_wrapped("scenes are looked up in ", 2, where);
 	return LZ_OK;
 }
 

@@ -3,8 +3,10 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "lz/edmd_obs.h"
 #include "lz/error.h"
 #include "lz/progress.h"
+#include "lz/reference.h"
 #include "config.h"
 #include "edmd_scene.h"
 
@@ -92,6 +94,42 @@ int lz_edmd_scene_start(const lz_scene *s, lz_edmd *e, lz_rng *rng)
 		return lz_scene_fail(s, lz_scene_given(s, "n") ? "n" : "packing", "%s",
 		                     lz_error_message());
 	return LZ_OK;
+}
+
+/* Where the fluid ends (*end) and the other phase begins (*next), from the tables. */
+static int fluid_limits(int dim, lz_ref *end, lz_ref *next)
+{
+	if (dim == 3)
+		return lz_reference("hard-spheres.csv", "freezing packing fraction", "3",
+		                    "coexistence", end) ||
+		       lz_reference("hard-spheres.csv", "melting packing fraction", "3",
+		                    "coexistence", next);
+	return lz_reference("hard-disks.csv", "liquid stability limit", "2", "packing fraction",
+	                    end) ||
+	       lz_reference("hard-disks.csv", "hexatic phase begins", "2", "packing fraction",
+	                    next);
+}
+
+void lz_edmd_scene_warn_phase(const lz_edmd *e, double packing, int quiet)
+{
+	lz_ref end, next;
+	if (quiet || e->wall[0] || e->g > 0 || e->restitution < 1 ||
+	    fluid_limits(e->dim, &end, &next) != LZ_OK || packing <= end.value)
+		return;
+	const char *source = "";
+	double z = lz_edmd_z_reference(e->dim, packing, &source);
+	if (e->dim == 3)
+		fprintf(stderr, "lz: warning: packing = %g is beyond the hard-sphere fluid, stable "
+		        "up to its freezing packing %.4f (the crystal from %.4f on; "
+		        "datasets/reference/hard-spheres.csv): Z_ref = %.4g is the fluid's "
+		        "equation of state (%s) carried past %s, not this system's; a lattice "
+		        "start does not melt\n", packing, end.value, next.value, z, source, "freezing");
+	else
+		fprintf(stderr, "lz: warning: packing = %g is beyond the hard-disk liquid, stable "
+		        "up to %.3f (the hexatic phase from %.3f on; "
+		        "datasets/reference/hard-disks.csv): Z_ref = %.4g is the fluid's "
+		        "equation of state (%s) carried past %s, not this system's; a lattice "
+		        "start does not melt\n", packing, end.value, next.value, z, source, "its stability limit");
 }
 
 /* Equilibration: elastic, in pieces for the progress line on a terminal; then the clock

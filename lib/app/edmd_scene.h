@@ -35,17 +35,17 @@
 	         "periodic"}, \
 	{.name = "cells", .type = LZ_KEY_INT, .def = "0", .max = 1e5, .unit = "per side", \
 	 .help = "cells per side, each at least σ wide, >= 3 on a periodic axis; 0: " \
-	         "automatic (about " \
-	         "1.5 per particle in 2D, 8 in 3D, as many as fit when dense)"}, \
+	         "automatic: about 1.5 cells per particle in 2D, 3 in 3D (the side rounded " \
+	         "up, at least 3), or as many as fit when that is fewer (dense)"}, \
 	{.name = "equilibrate", .type = LZ_KEY_REAL, .def = "50", .max = 1e9, \
 	 .unit = "per particle", \
 	 .help = "events per particle run first and discarded, elastic whatever the " \
 	         "restitution"}, \
-	{.name = "config", .type = LZ_KEY_TEXT, .def = "", \
-	 .help = "file of rows x y [z] [vx vy [vz]] (σ, σ/τ; '#' comments): the initial " \
-	         "state instead " \
-	         "of a lattice, n = its rows, positions in [0, L); no velocities: Maxwell, " \
-	         "kT = 1"}, \
+	{.name = "config", .type = LZ_KEY_PATH, .def = "", \
+	 .help = "file of rows x y [z] [vx vy [vz]] (σ, σ/τ; '#' comments; a relative " \
+	         "name in the scene is read from the scene's directory): the initial state " \
+	         "instead of a lattice, n = its rows, positions in [0, L); no velocities: " \
+	         "Maxwell, kT = 1"}, \
 	{.name = "seed", .type = LZ_KEY_SEED, .def = "auto", \
 	 .help = "random seed of the lattice sites and the velocities"}
 
@@ -65,6 +65,12 @@ lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n);
 /* Place e's particles: from the config file (velocities from it or Maxwell's), or on a
  * lattice. LZ_OK or an error at the key to blame. O(n log n). */
 int lz_edmd_scene_start(const lz_scene *s, lz_edmd *e, lz_rng *rng);
+
+/* Unless quiet, a warning on stderr when e is compared with the fluid's equation of
+ * state (periodic, elastic, no gravity: Z_ref) at a packing where the fluid is not the
+ * stable phase: above the hard-sphere freezing packing, or the hard-disk liquid's
+ * stability limit (datasets/reference/). O(1). */
+void lz_edmd_scene_warn_phase(const lz_edmd *e, double packing, int quiet);
 
 /* Run `equilibrate` events per particle, elastic whatever the restitution (a progress
  * line unless quiet), then set the clock to 0. */

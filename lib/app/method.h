@@ -24,12 +24,28 @@ typedef struct {
 	int quiet;             /* 1: no progress line, no chatter on stderr */
 } lz_run;
 
+/* A row of the table `lz run` prints after a run (run_table.h): a summary key, shown
+ * with its error bar key_err when the summary has one, and its reference. */
+typedef struct {
+	const char *key;
+	const char *ref;     /* the summary key of its reference value, or NULL */
+	const char *source;  /* the summary key naming the reference's source, or NULL */
+} lz_headline;
+
+/* A speed figure: a summary key and its unit as the table prints it. */
+typedef struct {
+	const char *key, *unit;
+} lz_speed;
+
 typedef struct lz_method {
 	const char *name;        /* the value of `method =` */
 	const char *help;        /* one line for `lz help` */
 	lz_key_table keys;       /* its keys ("method" itself need not be listed), under name */
 	int (*check)(const lz_scene *s);  /* cross-key check, or NULL */
 	int (*run)(const lz_scene *s, lz_run *run);
+	const lz_headline *headline;  /* the rows of the table after a run, ended by {NULL};
+	                                 a key the summary lacks is left out */
+	const lz_speed *speed;        /* the speed: the first the summary holds, {NULL} ended */
 } lz_method;
 
 /* A method's table entry: its name given once, for the method and its key table. */

@@ -43,11 +43,11 @@ enum { OBS_GR = 1, OBS_MSD = 2 };
 static const lz_key keys[] = {
 	LZ_EDMD_SYSTEM_KEYS,
 	{.name = "events", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e9, .min_open = 1,
-	 .unit = "per particle",
+	 .unit = "per particle", .group = 1,
 	 .help = "events per particle measured, in blocks of equal events (give events or "
 	         "time; " "default 100)"},
 	{.name = "time", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e9, .min_open = 1,
-	 .unit = "τ",
+	 .unit = "τ", .group = 1,
 	 .help = "simulated time measured, in blocks of equal duration (give events or time)"},
 	{.name = "blocks", .type = LZ_KEY_INT, .def = "20", .min = 2, .max = 1e6,
 	 .help = "blocks of the error bars (the standard error of the block means)"},
@@ -628,8 +628,10 @@ static int run(const lz_scene *s, lz_run *run)
 		status = lz_edmd_scene_start(s, e, rng);
 	}
 	double setup_s = lz_cpu_now() - t0;
-	if (status == LZ_OK)
+	if (status == LZ_OK) {
+		lz_edmd_scene_warn_phase(e, lz_scene_real(s, "packing"), run->quiet);
 		status = lz_edmd_scene_equilibrate(s, e, run->quiet);
+	}
 	if (status == LZ_OK) {
 		if (scene_observe(s) & OBS_MSD)
 			e->sort_every = 0;  /* the track follows particle numbers */
@@ -648,6 +650,17 @@ static int run(const lz_scene *s, lz_run *run)
 	return status;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "Z", .ref = "Z_ref", .source = "Z_ref_source"},
+	{.key = "Z_gamma", .ref = "Z_ref"}, {.key = "collision_rate"},
+	{.key = "contact_value", .ref = "contact_value_ref"},
+	{.key = "gr_contact", .ref = "contact_value_ref"}, {.key = "temperature"},
+	{.key = "temperature_final"}, {.key = "haff_t0"}, {.key = "diffusion"},
+	{.key = "height_mean"}, {.key = "max_overlap"}, {NULL},
+};
+static const lz_speed speed[] = {{"events_per_s", "events/s (CPU)"}, {NULL}};
+
 const lz_method lz_method_edmd = {
 	LZ_METHOD_KEYS("edmd", keys),
 	.help = "event-driven hard spheres (3D) and disks (2D): one event per particle in a "
@@ -655,4 +668,6 @@ const lz_method lz_method_edmd = {
 	        "with error bars; walls, gravity, inelastic cooling, g(r), msd",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

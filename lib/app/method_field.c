@@ -44,14 +44,14 @@ static const lz_key keys[] = {
 	 .min_open = 1, .unit = "lattice units",
 	 .help = "particle radius R; the excluded disk of radius σ = 2R must fit in the "
 	         "box: 4R <= L"},
-	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9,
+	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9, .group = 1,
 	 .help = "number of particles placed by random sequential adsorption (give one of "
 	         "n, " "coverage and fill)"},
 	{.name = "coverage", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = LZ_WALK_CLOSE_2D,
-	 .min_open = 1,
+	 .min_open = 1, .group = 1,
 	 .help = "target coverage θ = N·πR²/(L²·cell), 4/3 πR³·N/L³ in 3D, n rounded from "
 	         "it; " "adsorption jams near 0.547 (disks) and 0.384 (spheres)"},
-	{.name = "fill", .type = LZ_KEY_ENUM, .def = "", .choices = "jam",
+	{.name = "fill", .type = LZ_KEY_ENUM, .def = "", .choices = "jam", .group = 1,
 	 .help = "jam: adsorb until no free site is left (exact jamming, counted by the "
 	         "field)"},
 	{.name = "motion", .type = LZ_KEY_ENUM, .def = "none", .choices = "none|walk|ballistic",
@@ -539,6 +539,15 @@ static int run(const lz_scene *s, lz_run *run)
 	return status;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "placed"}, {.key = "placed_coverage"}, {.key = "jammed"},
+	{.key = "acceptance"}, {.key = "energy_per_particle_mean"}, {NULL},
+};
+static const lz_speed speed[] = {
+	{"atomsteps_per_s", "atom-steps/s (CPU)"}, {"placed_per_s", "placements/s (CPU)"}, {NULL},
+};
+
 const lz_method lz_method_field = {
 	LZ_METHOD_KEYS("field", keys),
 	.help = "hard disks (spheres) painted on a byte field: random sequential adsorption to "
@@ -546,4 +555,6 @@ const lz_method lz_method_field = {
 	        "moves, square-well Metropolis",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

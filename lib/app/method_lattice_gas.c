@@ -681,10 +681,20 @@ static int run(const lz_scene *s, lz_run *run)
 	return status;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "mass_change"}, {.key = "momentum_change"},
+	{.key = "viscosity", .ref = "viscosity_theory"}, {.key = "front_anisotropy"},
+	{.key = "obstacle_drag"}, {NULL},
+};
+static const lz_speed speed[] = {{"site_updates_per_s", "site updates/s"}, {NULL}};
+
 const lz_method lz_method_lattice_gas = {
 	LZ_METHOD_KEYS("lattice-gas", keys),
 	.help = "HPP and FHP lattice gases: propagation by masks, collisions by table; "
 	        "exact conservation, shear-wave viscosity, pulse isotropy, flow past obstacles",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

@@ -25,6 +25,7 @@
 #include "lz/walk.h"
 
 enum { ORDER_NONE, ORDER_ROW, ORDER_MORTON };
+#define DEFAULT_SKIN 4.0  /* nl, cl: a safe interval of 2 sweeps (1 on cubic26) */
 enum { STORE_LINKED, STORE_ARRAY };
 
 static const lz_key keys[] = {
@@ -41,16 +42,21 @@ static const lz_key keys[] = {
 	{.name = "radius", .type = LZ_KEY_REAL, .def = "12", .min = 0, .max = 8192,
 	 .min_open = 1, .unit = "lattice units",
 	 .help = "particle radius R; σ = 2R, and 4R <= L"},
-	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9,
+	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e9, .group = 1,
 	 .help = "number of particles, placed by random sequential adsorption (give n or "
 	         "packing)"},
 	{.name = "packing", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = LZ_WALK_CLOSE_2D,
-	 .min_open = 1,
+	 .min_open = 1, .group = 1,
 	 .help = "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), n rounded from "
 	         "it; " "adsorption jams near 0.547 (2D), 0.38 (3D)"},
-	{.name = "skin", .type = LZ_KEY_REAL, .def = "4", .max = 16384, .unit = "lattice units",
+	{.name = "skin", .type = LZ_KEY_REAL, .def = "", .max = 16384, .unit = "lattice units",
 	 .help = "Δr > 0 (nl, fnl, cl; fr ignores it): lists hold pairs within r_l = σ + "
-	         "lmax + Δr, " "cl cells are at least r_l wide"},
+	         "lmax + Δr, cl cells are at least r_l wide. Default: 4 for nl and cl (exact "
+	         "at any skin with the safe refresh); for fnl the skin at which its lists "
+	         "hold about 24 particles, R·(24/η)^(1/dim) - σ - lmax rounded up, within "
+	         "L/2 (61 at R = 12, η = 0.474): its refresh finds a newcomer only through a "
+	         "common neighbour, and the thinnest lists that missed no pair held 3 to 19 "
+	         "(datasets/scenes/README.md); a thinner skin is faster where it is safe"},
 	{.name = "refresh", .type = LZ_KEY_INT, .def = "0", .max = 1e9, .unit = "sweeps",
 	 .help = "sweeps between refreshes; 0: the safe interval floor(Δr/(2 lmax)) (a "
 	         "skin of at " "least two steps); longer ones miss pairs (fr: no lists)"},
@@ -98,7 +104,6 @@ static lz_nwalk_params scene_params(const lz_scene *s)
 		.side = lz_scene_int(s, "size"),
 		.radius = lz_scene_real(s, "radius"),
 		.n = (size_t)particles(s),
-		.skin = lz_scene_real(s, "skin"),
 		.refresh = (int)lz_scene_int(s, "refresh"),
 		.order = order == ORDER_MORTON ? LZ_CELLS_MORTON : LZ_CELLS_ROW,
 		.renumber = order != ORDER_NONE,
@@ -106,6 +111,9 @@ static lz_nwalk_params scene_params(const lz_scene *s)
 		.single = lz_scene_int(s, "copies") == 1,
 		.audit = lz_scene_bool(s, "audit"),
 	};
+	p.skin = lz_scene_has(s, "skin") ? lz_scene_real(s, "skin")
+	         : p.driver == LZ_NWALK_FNL ? lz_nwalk_fnl_skin(p.kind, p.side, p.radius, p.n)
+	         : DEFAULT_SKIN;
 	return p;
 }
 
@@ -206,6 +214,7 @@ static void summarise(const lz_nwalk *nw, size_t overlaps, lz_json *j)
 	lz_json_int(j, "n_placed", (long long)p->n);
 	lz_json_num(j, "packing_fraction", lz_walk_packing(p->kind, p->side, p->radius, p->n));
 	lz_json_num(j, "interaction_range", nw->rc);
+	lz_json_num(j, "skin_run", lists ? p->skin : NAN);
 	lz_json_num(j, "list_radius", lists ? nw->rl : NAN);
 	lz_json_int(j, "sweeps", (long long)nw->sweeps);
 	lz_json_num(j, "acceptance", nw->moves ? (double)nw->accepted / (double)nw->moves : NAN);
@@ -290,6 +299,13 @@ static int run(const lz_scene *s, lz_run *run)
 	return status;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "n_placed"}, {.key = "packing_fraction"}, {.key = "skin_run"},
+	{.key = "acceptance"}, {.key = "missed_pairs"}, {.key = "overlaps"}, {NULL},
+};
+static const lz_speed speed[] = {{"atomsteps_per_s", "atom-steps/s (CPU)"}, {NULL}};
+
 const lz_method lz_method_nlist = {
 	LZ_METHOD_KEYS("nlist", keys),
 	.help = "one hard-disk random walk, four ways to find the neighbours (thesis table "
@@ -297,4 +313,6 @@ const lz_method lz_method_nlist = {
 	        "field (fr); skin, refresh interval and the pairs they miss",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

@@ -291,6 +291,7 @@ static int run(const lz_scene *s, lz_run *run)
 	int st = lz_pedmd_scene_make(s, run->quiet, &p);
 	if (st != LZ_OK)
 		return st;
+	lz_edmd_scene_warn_phase(p.system, lz_scene_real(s, "packing"), run->quiet);
 	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1];
 	int moved = 0;
 	double ratio = NAN;
@@ -323,6 +324,16 @@ static int run(const lz_scene *s, lz_run *run)
 	return st;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "Z", .ref = "Z_ref", .source = "Z_ref_source"},
+	{.key = "identical_to_serial"}, {.key = "efficiency"}, {.key = "rollbacks"},
+	{.key = "speedup_virtual"}, {NULL},
+};
+static const lz_speed speed[] = {
+	{"events_per_s", "events/s (wall; every rank in one process)"}, {NULL},
+};
+
 const lz_method lz_method_pedmd = {
 	LZ_METHOD_KEYS("pedmd", keys),
 	.help = "parallel event-driven hard spheres and disks: P optimistic ranks with "
@@ -330,4 +341,6 @@ const lz_method lz_method_pedmd = {
 	        "process per rank); equal to the serial run bit for bit",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

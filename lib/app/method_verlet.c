@@ -40,9 +40,10 @@ static const lz_key keys[] = {
 	{.name = "dt", .type = LZ_KEY_REAL, .min = 0, .max = 10, .min_open = 1, .unit = "τ",
 	 .help = "time step"},
 	{.name = "steps", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e12,
-	 .help = "number of steps (give steps or time, not both)"},
+	 .group = 1, .help = "number of steps (give steps or time, not both)"},
 	{.name = "time", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = 1e12, .min_open = 1,
 	 .unit = "τ",
+	 .group = 1,
 	 .help = "duration, rounded to whole steps (give steps or time, not both)"},
 	{.name = "omega", .type = LZ_KEY_REAL, .def = "1", .min = 0, .max = 1e6, .min_open = 1,
 	 .unit = "1/τ",
@@ -483,10 +484,20 @@ static int run(const lz_scene *s, lz_run *run)
 	return status;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "energy_rel_err_max"}, {.key = "energy_drift_per_time"},
+	{.key = "shadow_energy_rel_err"}, {.key = "temperature_mean"},
+	{.key = "pressure_mean"}, {NULL},
+};
+static const lz_speed speed[] = {{"steps_per_s", "steps/s"}, {NULL}};
+
 const lz_method lz_method_verlet = {
 	LZ_METHOD_KEYS("verlet", keys),
 	.help = "time-stepped MD: Euler, Verlet, velocity Verlet, leapfrog on harmonic "
 	        "oscillators or a Lennard-Jones fluid",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

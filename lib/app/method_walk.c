@@ -39,9 +39,9 @@ static const lz_key keys[] = {
 	 .max = LZ_LATTICE_SIDE_MAX / 4, .min_open = 1, .unit = "lattice units",
 	 .help = "particle radius R; the diameter σ = 2R must be at most L/2"},
 	{.name = "n", .type = LZ_KEY_INT, .def = "", .min = 1, .max = 1e7,
-	 .help = "number of particles (give n or packing, not both)"},
+	 .group = 1, .help = "number of particles (give n or packing, not both)"},
 	{.name = "packing", .type = LZ_KEY_REAL, .def = "", .min = 0, .max = LZ_WALK_CLOSE_2D,
-	 .min_open = 1,
+	 .min_open = 1, .group = 1,
 	 .help = "packing fraction η = N·πR²/(L²·cell) (4/3 πR³/L³ in 3D), of the slit "
 	         "N·πR²/(L·H) " "with walls = slit; n is rounded from it"},
 	{.name = "motion", .type = LZ_KEY_ENUM, .def = "walk", .choices = "walk|ballistic",
@@ -452,10 +452,19 @@ static int run(const lz_scene *s, lz_run *run)
 	return status;
 }
 
+/* The table after a run (run_table.h). */
+static const lz_headline headline[] = {
+	{.key = "n_placed"}, {.key = "packing_fraction"}, {.key = "acceptance"},
+	{.key = "contact_density"}, {.key = "middle_density"}, {NULL},
+};
+static const lz_speed speed[] = {{"atomsteps_per_s", "atom-steps/s"}, {NULL}};
+
 const lz_method lz_method_walk = {
 	LZ_METHOD_KEYS("walk", keys),
 	.help = "hard disks (spheres) on a lattice: random walk or ballistic moves with "
 	        "rejection of overlaps, all pairs; g(r) on the lattice",
 	.check = check,
 	.run = run,
+	.headline = headline,
+	.speed = speed,
 };

@@ -23,6 +23,8 @@ typedef struct {
 	char *key, *value;
 	char *where;  /* "FILE:LINE" or the override's origin, for messages */
 	int line;     /* line number in the file; 0 for an override */
+	int unset;    /* 1: unset (`key=`, or a file value an override of its group beat):
+	                 kept only so that bind can report an unknown key */
 } lz_entry;
 
 /* A key of the bound method's table, parsed. */
@@ -31,11 +33,13 @@ typedef struct {
 	int entry;          /* index of the entry that gave it; -1: the default */
 	double real;        /* REAL and INT */
 	long long integer;  /* INT; SEED: the seed used; BOOL: 0/1; ENUM: the index */
+	char *path;         /* PATH: the resolved file name (owned); text points at it */
 } lz_value;
 
 struct lz_scene {
 	char *name;
 	char *origin;  /* the file's path (or the name): the place of whole-scene messages */
+	char *dir;     /* the file's directory, the base of its relative paths; NULL: "." */
 	lz_entry *e;
 	size_t n, cap;
 	const lz_key_table *t;  /* the table of a successful bind, else NULL */
@@ -99,9 +103,10 @@ static int is_word(const char *s)
 
 /* Split one line (len bytes at raw, no newline) into key and value, copied into buf
  * (LZ_SCENE_LINE_MAX + 1 bytes). Returns 1 for an assignment, 0 for a blank or
- * comment line, or an error code; `where` starts every message. */
-static int parse_line(const char *raw, size_t len, const char *where, char *buf,
-                         char **key, char **value)
+ * comment line, or an error code; `where` starts every message. An empty value is an
+ * error unless may_be_empty (an override that unsets). */
+static int parse_line(const char *raw, size_t len, const char *where, int may_be_empty,
+                      char *buf, char **key, char **value)
 {
 	if (len > 0 && raw[len - 1] == '\r')  /* a file saved with CRLF line ends */
 		len--;
@@ -129,12 +134,13 @@ static int parse_line(const char *raw, size_t len, const char *where, char *buf,
 	if (!is_word(*key))
 		return lz_error(LZ_ESYNTAX, "%s: key '%s' must be one word of a-z, 0-9 and _",
 		                where, *key);
-	if (!**value)
+	if (!**value && !may_be_empty)
 		return lz_error(LZ_ESYNTAX, "%s: key '%s' has no value", where, *key);
 	return 1;
 }
 
-static int scene_find(const lz_scene *s, const char *key)
+/* The entry of key, unset or not, or -1. */
+static int scene_entry(const lz_scene *s, const char *key)
 {
 	for (size_t i = 0; i < s->n; i++)
 		if (strcmp(s->e[i].key, key) == 0)
@@ -142,19 +148,29 @@ static int scene_find(const lz_scene *s, const char *key)
 	return -1;
 }
 
+/* The entry that gives key a value, or -1 (none, or unset). */
+static int scene_find(const lz_scene *s, const char *key)
+{
+	int i = scene_entry(s, key);
+	return i >= 0 && !s->e[i].unset ? i : -1;
+}
+
 void lz_scene_unbind(lz_scene *s)
 {
+	for (size_t i = 0; s->v && i < s->t->n; i++)
+		free(s->v[i].path);
 	free(s->v);
 	s->v = NULL;
 	s->t = NULL;
 }
 
 /* Set key = value from `where` (line 0: an override, which replaces an earlier
- * value; otherwise a second value for a key is an error). */
+ * value, and unsets the key when the value is empty; otherwise a second value for a
+ * key is an error). */
 static int scene_put(lz_scene *s, const char *key, const char *value, const char *where,
                         int line)
 {
-	int i = scene_find(s, key);
+	int i = scene_entry(s, key);
 	if (i >= 0 && line > 0)
 		return lz_error(LZ_ESYNTAX, "%s: key '%s' given twice (first at line %d)", where,
 		                key, s->e[i].line);
@@ -183,7 +199,7 @@ static int scene_put(lz_scene *s, const char *key, const char *value, const char
 		free(s->e[i].value);
 		free(s->e[i].where);
 	}
-	s->e[i] = (lz_entry){k, v, w, line};
+	s->e[i] = (lz_entry){k, v, w, line, !*value};
 	lz_scene_unbind(s);
 	return LZ_OK;
 }
@@ -226,7 +242,7 @@ static int scene_parse(lz_scene *s, const char *text, size_t len)
 		size_t n = nl ? (size_t)(nl - text) : (size_t)(end - text);
 		char *key, *value;
 		snprintf(where, sizeof where, "%s:%d", s->origin, line);
-		int rc = parse_line(text, n, where, buf, &key, &value);
+		int rc = parse_line(text, n, where, 0, buf, &key, &value);
 		if (rc == 1)
 			rc = scene_put(s, key, value, where, line);
 		if (rc != LZ_OK)
@@ -286,8 +302,11 @@ lz_scene *lz_scene_read(const char *path)
 	else if ((s = lz_scene_new(name))) {
 		free(s->origin);
 		s->origin = strdup(path);
-		if (!s->origin || scene_parse(s, text, len) != LZ_OK) {
-			if (!s->origin)
+		const char *slash = strrchr(path, '/');
+		if (slash)
+			s->dir = strndup(path, slash == path ? 1 : (size_t)(slash - path));
+		if (!s->origin || (slash && !s->dir) || scene_parse(s, text, len) != LZ_OK) {
+			if (!s->origin || (slash && !s->dir))
 				lz_error(LZ_ENOMEM, "no memory to read scene '%s'", path);
 			lz_scene_free(s);
 			s = NULL;
@@ -301,7 +320,7 @@ int lz_scene_set(lz_scene *s, const char *assignment, const char *origin)
 {
 	const char *where = origin ? origin : "command line";
 	char buf[LZ_SCENE_LINE_MAX + 1], *key, *value;
-	int rc = parse_line(assignment, strlen(assignment), where, buf, &key, &value);
+	int rc = parse_line(assignment, strlen(assignment), where, 1, buf, &key, &value);
 	if (rc == 0)
 		return lz_error(LZ_ESYNTAX, "%s: expected 'key=value', found '%s'", where,
 		                assignment);
@@ -318,9 +337,10 @@ void lz_scene_free(lz_scene *s)
 		free(s->e[i].where);
 	}
 	free(s->e);
-	free(s->v);
+	lz_scene_unbind(s);
 	free(s->name);
 	free(s->origin);
+	free(s->dir);
 	free(s);
 }
 
@@ -510,6 +530,7 @@ static int value_parse(const lz_key *k, const char *text, const char *where, lz_
 			                "yes/no, 1/0)", where, k->name, text);
 		return LZ_OK;
 	case LZ_KEY_TEXT:
+	case LZ_KEY_PATH:
 		return LZ_OK;
 	}
 	return lz_error(LZ_EINVAL, "%s: key '%s' has an unknown type %d", where, k->name,
@@ -525,10 +546,41 @@ static int scene_check_entries(const lz_scene *s)
 			continue;
 		if (strcmp(e->key, "method") != 0)
 			return unknown_key(s, e);
-		if (strcmp(e->value, s->t->method) != 0)
+		if (!e->unset && strcmp(e->value, s->t->method) != 0)
 			return lz_error(LZ_EINVAL, "%s: method = %s, but the scene is bound to "
 			                "method %s", e->where, e->value, s->t->method);
 	}
+	return LZ_OK;
+}
+
+/* The command line wins: an override of a key of a group unsets the file's values of
+ * the other keys of its group. */
+static void scene_apply_groups(lz_scene *s)
+{
+	for (size_t i = 0; i < s->t->n; i++) {
+		int e = scene_find(s, s->t->key[i].name);
+		if (s->t->key[i].group <= 0 || e < 0 || s->e[e].line > 0)
+			continue;
+		for (size_t k = 0; k < s->t->n; k++) {
+			int other = scene_find(s, s->t->key[k].name);
+			if (k != i && s->t->key[k].group == s->t->key[i].group && other >= 0 &&
+			    s->e[other].line > 0)
+				s->e[other].unset = 1;
+		}
+	}
+}
+
+/* A path the file gives, relative to the file's directory: into v->path. */
+static int resolve_path(const lz_scene *s, const lz_entry *e, lz_value *v)
+{
+	if (!e || e->line == 0 || !s->dir || e->value[0] == '/')
+		return LZ_OK;
+	size_t size = strlen(s->dir) + strlen(e->value) + 2;
+	if (!(v->path = malloc(size)))
+		return lz_error(LZ_ENOMEM, "%s: no memory for the path of key '%s'", e->where,
+		                e->key);
+	snprintf(v->path, size, "%s/%s", s->dir, e->value);
+	v->text = v->path;
 	return LZ_OK;
 }
 
@@ -551,6 +603,8 @@ static int scene_parse_values(lz_scene *s)
 		char def[256];
 		snprintf(def, sizeof def, "method %s: the default", s->t->method);
 		int rc = value_parse(k, v->text, v->entry >= 0 ? s->e[v->entry].where : def, v);
+		if (rc == LZ_OK && k->type == LZ_KEY_PATH)
+			rc = resolve_path(s, v->entry >= 0 ? &s->e[v->entry] : NULL, v);
 		if (rc != LZ_OK)
 			return rc;
 	}
@@ -567,8 +621,10 @@ int lz_scene_bind(lz_scene *s, const lz_key_table *t)
 	int rc = s->v ? LZ_OK : lz_error(LZ_ENOMEM, "%s: no memory to bind", s->origin);
 	if (rc == LZ_OK)
 		rc = scene_check_entries(s);
-	if (rc == LZ_OK)
+	if (rc == LZ_OK) {
+		scene_apply_groups(s);
 		rc = scene_parse_values(s);
+	}
 	if (rc != LZ_OK)
 		lz_scene_unbind(s);
 	return rc;
@@ -578,7 +634,8 @@ int lz_scene_bind(lz_scene *s, const lz_key_table *t)
 
 static const char *type_name(lz_key_type t)
 {
-	static const char *const names[] = {"integer", "real", "enum", "seed", "bool", "text"};
+	static const char *const names[] = {"integer", "real", "enum", "seed", "bool", "text",
+	                                    "path"};
 	return (unsigned)t < sizeof names / sizeof names[0] ? names[t] : "?";
 }
 
@@ -692,6 +749,7 @@ void lz_scene_json(const lz_scene *s, lz_json *j)
 			break;
 		case LZ_KEY_ENUM:
 		case LZ_KEY_TEXT:
+		case LZ_KEY_PATH:
 			lz_json_str(j, k->name, v->text);
 			break;
 		}

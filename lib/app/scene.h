@@ -7,6 +7,11 @@
  * error names the place ("water.scene:7:" or "command line:") and the allowed range:
  *   water.scene:7: key 'dt' = -0.1 is out of range (0, 1]
  * Errors are LZ_ESYNTAX (malformed file) or LZ_EINVAL (bad key or value).
+ *
+ * The command line wins over the file: an override replaces the file's value; an
+ * empty one (`key=`) unsets the key, so that its default applies; and an override of
+ * one key of a group of alternatives (steps or time; n or packing) unsets the other
+ * keys of that group the file gives, so `time=10` works on a scene that sets steps.
  */
 #ifndef LZ_SCENE_H
 #define LZ_SCENE_H
@@ -21,7 +26,9 @@ typedef enum {
 	LZ_KEY_ENUM,  /* one of the words in `choices`, "a|b|c" */
 	LZ_KEY_SEED,  /* "auto" or an integer in [1, LZ_SEED_MAX] (lz/rng.h) */
 	LZ_KEY_BOOL,  /* true|false|yes|no|1|0 */
-	LZ_KEY_TEXT   /* any text without control characters (a label, a type name) */
+	LZ_KEY_TEXT,  /* any text without control characters (a label, a type name) */
+	LZ_KEY_PATH   /* a file name: relative to the scene file's directory when the file
+	                 gives it, to the current directory when the command line does */
 } lz_key_type;
 
 /* One entry of an engine's key table. */
@@ -35,6 +42,8 @@ typedef struct {
 	const char *choices;  /* ENUM: "euler|verlet|..." */
 	const char *unit;     /* unit of a number in reduced units ("σ", "1/τ"), or NULL */
 	const char *help;     /* one line for `lz help METHOD` */
+	int group;            /* > 0: one of the alternative keys of that group number (give
+	                         one of them): an override of one unsets the others */
 } lz_key;
 
 /* A key table: the keys a scene may hold for one engine, and that engine's name (the
@@ -54,7 +63,9 @@ lz_scene *lz_scene_read(const char *path);
 /* An empty scene named `name` (for programs that build scenes themselves). */
 lz_scene *lz_scene_new(const char *name);
 /* Add or replace `key=value` (a command-line override); origin names where it came
- * from in error messages, e.g. "command line". */
+ * from in error messages, e.g. "command line". `key=` (no value) unsets the key: the
+ * scene then reads as if it did not give it (an unknown key is still reported at
+ * bind). */
 int lz_scene_set(lz_scene *s, const char *assignment, const char *origin);
 void lz_scene_free(lz_scene *s);
 
@@ -65,8 +76,10 @@ const char *lz_scene_method(const lz_scene *s);
 
 /* Check every key against the table: unknown keys, missing required keys, wrong
  * types, values out of range; fill in defaults; resolve seed=auto (the seed actually
- * used is then what lz_scene_seed returns and what lz_scene_json writes). The table
- * is kept, not copied. On an error the scene is left unbound. */
+ * used is then what lz_scene_seed returns and what lz_scene_json writes) and the paths
+ * of the file against its directory. An override of a key of a group (lz_key.group)
+ * unsets, for good, the file's values of the other keys of that group. The table is
+ * kept, not copied. On an error the scene is left unbound. */
 int lz_scene_bind(lz_scene *s, const lz_key_table *t);
 /* Forget the binding (the scene's lines stay). O(1). */
 void lz_scene_unbind(lz_scene *s);
@@ -81,7 +94,8 @@ int lz_scene_enum(const lz_scene *s, const char *key);  /* index into choices; -
 unsigned long lz_scene_seed(const lz_scene *s, const char *key);
 /* 1 when the key has a value (given, or a non-empty default). */
 int lz_scene_has(const lz_scene *s, const char *key);
-/* 1 when the key was given explicitly (in the file or on the command line). */
+/* 1 when the key was given explicitly (in the file or on the command line), and not
+ * unset since. */
 int lz_scene_given(const lz_scene *s, const char *key);
 
 /* Report a cross-key problem at the key's place: "file:line: " + message. Returns

@@ -286,16 +286,20 @@ static int rundir_replaceable(const char *path, int *exists)
 	return LZ_OK;
 }
 
-/* mkdir -p of the directories above `path`. */
+/* mkdir -p of the directories above `path`; one that exists must be a directory. */
 static int mkdir_parents(const char *path)
 {
 	char buf[sizeof ((lz_rundir *)0)->final];
+	struct stat st;
 	snprintf(buf, sizeof buf, "%s", path);
 	for (char *p = buf + 1; (p = strchr(p, '/')); p++) {
 		*p = '\0';
 		if (mkdir(buf, 0777) != 0 && errno != EEXIST)
 			return lz_error(LZ_EIO, "cannot create directory '%s': %s", buf,
 			                strerror(errno));
+		if (stat(buf, &st) != 0 || !S_ISDIR(st.st_mode))
+			return lz_error(LZ_EIO, "cannot create a directory in '%s': it is not a "
+			                "directory", buf);
 		*p = '/';
 	}
 	return LZ_OK;

@@ -1,11 +1,14 @@
 /* support.c — see support.h. */
 #include <dirent.h>
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include "cli.h"
 #include "method.h"
 #include "lz/output.h"
 #include "scene.h"
@@ -356,4 +359,45 @@ int lzt_run(const lz_method *m, const char *path, const char *overrides, const c
 		lz_rundir_abort(&d);
 	lz_scene_free(s);
 	return status;
+}
+
+/* ---- the lz command in-process ---- */
+
+char lzt_out[16384], lzt_err[16384];
+
+/* Everything written to f (a tmpfile) into buf; f is closed. */
+static void lzt_take(FILE *f, char *buf, size_t size)
+{
+	rewind(f);
+	size_t n = fread(buf, 1, size - 1, f);
+	buf[n] = '\0';
+	fclose(f);
+}
+
+int lzt_cli(const char *arg, ...)
+{
+	char *argv[32] = {"lz"};
+	int argc = 1;
+	va_list ap;
+	va_start(ap, arg);
+	for (const char *a = arg; a && argc < 31; a = va_arg(ap, const char *))
+		argv[argc++] = (char *)a;
+	va_end(ap);
+	argv[argc] = NULL;
+	FILE *out = tmpfile(), *err = tmpfile();
+	ck_assert_msg(out && err, "no temporary files for the output of lz");
+	fflush(stdout);
+	fflush(stderr);
+	int keep_out = dup(STDOUT_FILENO), keep_err = dup(STDERR_FILENO);
+	ck_assert(dup2(fileno(out), STDOUT_FILENO) >= 0 && dup2(fileno(err), STDERR_FILENO) >= 0);
+	int rc = lz_cli_main(argc, argv);
+	fflush(stdout);
+	fflush(stderr);
+	dup2(keep_out, STDOUT_FILENO);
+	dup2(keep_err, STDERR_FILENO);
+	close(keep_out);
+	close(keep_err);
+	lzt_take(out, lzt_out, sizeof lzt_out);
+	lzt_take(err, lzt_err, sizeof lzt_err);
+	return rc;
 }

@@ -40,6 +40,14 @@ int lzt_bind(const struct lz_method *m, const char *overrides);
 int lzt_run(const struct lz_method *m, const char *path, const char *overrides,
             const char *out);
 
+/* ---- the lz command, in-process ---- */
+
+/* What the last lzt_cli call wrote on stdout and on stderr (truncated to 16 KiB). */
+extern char lzt_out[16384], lzt_err[16384];
+/* lz_cli_main on the NULL-terminated arguments after "lz"; stdout and stderr are
+ * captured into lzt_out and lzt_err. Returns the exit status. */
+int lzt_cli(const char *arg, ...);
+
 /* ---- a flat JSON object, read strictly (RFC 8259 grammar) ---- */
 typedef enum { LZT_NUM, LZT_STR, LZT_TRUE, LZT_FALSE, LZT_NULL } lzt_kind;
 typedef struct {

@@ -2,7 +2,6 @@
  * summary; every kind of bad input exits 2 with one line on stderr and leaves no
  * directory behind; the same seed gives the same summary. */
 #include <glob.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,47 +19,6 @@
                  "dt = 0.01\nsteps = 1000\nseed = 7\n"
 
 static const char *dir;  /* this test's temporary directory */
-static char out_text[16384], err_text[16384];
-
-/* Read a capture file into buf and remove it. */
-static void take(const char *path, char *buf, size_t size)
-{
-	char *text = lzt_slurp(path, NULL);
-	snprintf(buf, size, "%s", text ? text : "");
-	free(text);
-	unlink(path);
-}
-
-/* lz_cli_main on the NULL-terminated arguments after "lz"; stdout and stderr are
- * captured into out_text and err_text. */
-static int lz(const char *arg, ...)
-{
-	char *argv[32] = {"lz"};
-	int argc = 1;
-	va_list ap;
-	va_start(ap, arg);
-	for (const char *a = arg; a && argc < 31; a = va_arg(ap, const char *))
-		argv[argc++] = (char *)a;
-	va_end(ap);
-	argv[argc] = NULL;
-	if (!dir)
-		dir = lzt_tmpdir();
-	const char *out = lzt_path(dir, ".stdout"), *err = lzt_path(dir, ".stderr");
-	fflush(stdout);
-	fflush(stderr);
-	int keep_out = dup(STDOUT_FILENO), keep_err = dup(STDERR_FILENO);
-	ck_assert(freopen(out, "w", stdout) && freopen(err, "w", stderr));
-	int rc = lz_cli_main(argc, argv);
-	fflush(stdout);
-	fflush(stderr);
-	dup2(keep_out, STDOUT_FILENO);
-	dup2(keep_err, STDERR_FILENO);
-	close(keep_out);
-	close(keep_err);
-	take(out, out_text, sizeof out_text);
-	take(err, err_text, sizeof err_text);
-	return rc;
-}
 
 /* Remove the temporary directory; the next scene() makes a new one. */
 static void cleanup(void)
@@ -81,8 +39,8 @@ static const char *scene(const char *name, const char *text)
 LZ_TEST(cli_runs_harmonic_scene)
 {
 	const char *path = scene("harmonic.scene", HARMONIC), *out = lzt_path(dir, "out");
-	int rc = lz("run", path, "--out", out, "--quiet", NULL);
-	ck_assert_msg(rc == 0, "lz run on a good harmonic scene exited %d: %s", rc, err_text);
+	int rc = lzt_cli("run", path, "--out", out, "--quiet", NULL);
+	ck_assert_msg(rc == 0, "lz run on a good harmonic scene exited %d: %s", rc, lzt_err);
 	lzt_json *j = lzt_summary(out);
 	const lzt_member *m = lzt_json_get(j, "method");
 	ck_assert_msg(m && m->kind == LZT_STR && strcmp(m->text, "verlet") == 0,
@@ -95,7 +53,7 @@ LZ_TEST(cli_runs_harmonic_scene)
 	              "dt = 0.01 on the harmonic oscillator", err);
 	ck_assert_msg(wall >= 0 && lzt_num(j, "steps_per_s") > 0, "wall_s or steps_per_s not > 0");
 	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a .partial directory is left");
-	ck_assert_msg(err_text[0] == '\0', "--quiet, yet stderr has '%s'", err_text);
+	ck_assert_msg(lzt_err[0] == '\0', "--quiet, yet stderr has '%s'", lzt_err);
 	free(j);
 	cleanup();
 }
@@ -105,8 +63,8 @@ LZ_TEST(cli_same_seed_same_summary)
 {
 	const char *path = scene("h.scene", HARMONIC);
 	const char *a = lzt_path(dir, "a"), *b = lzt_path(dir, "b");
-	ck_assert(lz("run", path, "--out", a, "--quiet", "steps=2000", NULL) == 0);
-	ck_assert(lz("run", path, "--out", b, "--quiet", "steps=2000", NULL) == 0);
+	ck_assert(lzt_cli("run", path, "--out", a, "--quiet", "steps=2000", NULL) == 0);
+	ck_assert(lzt_cli("run", path, "--out", b, "--quiet", "steps=2000", NULL) == 0);
 	lzt_json *ja = lzt_summary(a), *jb = lzt_summary(b);
 	ck_assert_msg(ja->n == jb->n, "the two runs wrote %d and %d keys", ja->n, jb->n);
 	for (int i = 0; i < ja->n; i++) {
@@ -132,15 +90,15 @@ LZ_TEST(cli_replaces_previous_run_and_logs_auto_seed)
 	const char *path = scene("h.scene", "method = verlet\npotential = harmonic\n"
 	                         "integrator = velocity-verlet\ndt = 0.01\nsteps = 100\n");
 	const char *out = lzt_path(dir, "runs/h");
-	ck_assert(lz("run", path, "--out", out, NULL) == 0);
-	ck_assert_msg(lz("run", path, "--out", out, NULL) == 0,
-	              "a second run into the same directory failed: %s", err_text);
+	ck_assert(lzt_cli("run", path, "--out", out, NULL) == 0);
+	ck_assert_msg(lzt_cli("run", path, "--out", out, NULL) == 0,
+	              "a second run into the same directory failed: %s", lzt_err);
 	lzt_json *j = lzt_summary(out);
 	char want[128];
 	snprintf(want, sizeof want, "lz: seed = %.0f (auto); pass seed=%.0f to repeat this run\n",
 	         lzt_num(j, "seed"), lzt_num(j, "seed"));
-	ck_assert_msg(strstr(err_text, want) != NULL, "stderr should log the seed used:\n"
-	              "  %s\ngot\n  %s", want, err_text);
+	ck_assert_msg(strstr(lzt_err, want) != NULL, "stderr should log the seed used:\n"
+	              "  %s\ngot\n  %s", want, lzt_err);
 	ck_assert_msg(lzt_count_matching(lzt_path(dir, "runs"), "h.") == 0,
 	              "a temporary directory was left next to the run");
 	free(j);
@@ -152,8 +110,8 @@ LZ_TEST(cli_default_output_directory)
 {
 	const char *path = scene("spring.scene", HARMONIC);
 	ck_assert(chdir(dir) == 0);
-	int rc = lz("run", path, "--quiet", NULL);
-	ck_assert_msg(rc == 0, "exit %d: %s", rc, err_text);
+	int rc = lzt_cli("run", path, "--quiet", NULL);
+	ck_assert_msg(rc == 0, "exit %d: %s", rc, lzt_err);
 	ck_assert_msg(lzt_exists(lzt_path(dir, "build/runs/spring/summary.json")),
 	              "without --out the run should go to build/runs/<scene name>/");
 	ck_assert(chdir("/") == 0);
@@ -166,9 +124,9 @@ LZ_TEST(cli_scene_by_name)
 	scene("spring.scene", HARMONIC);
 	setenv("LZ_SCENES", dir, 1);
 	ck_assert_msg(strcmp(lz_scene_dir(), dir) == 0, "lz_scene_dir() ignores $LZ_SCENES");
-	int rc = lz("run", "spring", "--out", lzt_path(dir, "o"), "--quiet", NULL);
+	int rc = lzt_cli("run", "spring", "--out", lzt_path(dir, "o"), "--quiet", NULL);
 	ck_assert_msg(rc == 0, "a scene named without its path was not found in $LZ_SCENES: %s",
-	              err_text);
+	              lzt_err);
 	cleanup();
 }
 END_TEST
@@ -179,15 +137,15 @@ static void refused(const char *expect, const char *path, const char *extra)
 {
 	const char *out = lzt_path(dir, "out");
 	lz_set_error_handler(NULL);  /* the CLI must not print a message twice */
-	int rc = extra ? lz("run", path, "--out", out, extra, NULL)
-	               : lz("run", path, "--out", out, NULL);
-	ck_assert_msg(rc == 2, "bad input (%s) should exit 2, exited %d: %s", expect, rc, err_text);
-	ck_assert_msg(strncmp(err_text, "lz: ", 4) == 0 && strstr(err_text, expect),
-	              "stderr should be 'lz: ...%s...', got '%s'", expect, err_text);
-	const char *nl = strchr(err_text, '\n');
-	ck_assert_msg(nl && !strstr(err_text + 1, "lz: ") && (!nl[1] || strstr(nl, "usage: ")),
+	int rc = extra ? lzt_cli("run", path, "--out", out, extra, NULL)
+	               : lzt_cli("run", path, "--out", out, NULL);
+	ck_assert_msg(rc == 2, "bad input (%s) should exit 2, exited %d: %s", expect, rc, lzt_err);
+	ck_assert_msg(strncmp(lzt_err, "lz: ", 4) == 0 && strstr(lzt_err, expect),
+	              "stderr should be 'lz: ...%s...', got '%s'", expect, lzt_err);
+	const char *nl = strchr(lzt_err, '\n');
+	ck_assert_msg(nl && !strstr(lzt_err + 1, "lz: ") && (!nl[1] || strstr(nl, "usage: ")),
 	              "the message should be printed once, on one line (then the usage, for "
-	              "a usage error): '%s'", err_text);
+	              "a usage error): '%s'", lzt_err);
 	ck_assert_msg(!lzt_exists(out), "a refused run created its output directory");
 	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a refused run left a .partial");
 	cleanup();
@@ -269,14 +227,14 @@ LZ_TEST(cli_refuses_bad_option_and_usage)
 	const char *calls[][3] = {{NULL}, {"run", NULL}, {"fly", NULL}, {"list", "x", NULL},
 	                          {"help", "a", "b"}};
 	for (int i = 0; i < 5; i++) {
-		int rc = lz(calls[i][0], calls[i][1], calls[i][2], NULL);
-		ck_assert_msg(rc == 2 && strstr(err_text, "usage: lz run SCENE"),
+		int rc = lzt_cli(calls[i][0], calls[i][1], calls[i][2], NULL);
+		ck_assert_msg(rc == 2 && strstr(lzt_err, "usage: lz run SCENE"),
 		              "call %d: a usage error should exit 2 and print the usage (exit %d, "
-		              "stderr '%s')", i, rc, err_text);
+		              "stderr '%s')", i, rc, lzt_err);
 	}
-	int rc = lz("run", scene("h.scene", HARMONIC), "--out", NULL);
-	ck_assert_msg(rc == 2 && strstr(err_text, "--out needs a directory"),
-	              "--out without a directory: exit %d, '%s'", rc, err_text);
+	int rc = lzt_cli("run", scene("h.scene", HARMONIC), "--out", NULL);
+	ck_assert_msg(rc == 2 && strstr(lzt_err, "--out needs a directory"),
+	              "--out without a directory: exit %d, '%s'", rc, lzt_err);
 }
 END_TEST
 
@@ -286,7 +244,7 @@ LZ_TEST(cli_refuses_user_directory_as_out)
 	const char *file = lzt_path(mine, "thesis.tex");
 	ck_assert(mkdir(mine, 0777) == 0);
 	lzt_write_str(file, "precious");
-	int rc = lz("run", path, "--out", mine, "--quiet", NULL);
+	int rc = lzt_cli("run", path, "--out", mine, "--quiet", NULL);
 	ck_assert_msg(rc == 2, "--out at a user's non-empty directory should exit 2, got %d", rc);
 	ck_assert_msg(lzt_exists(file), "lz deleted a file in the user's directory");
 	ck_assert_msg(lzt_count_matching(dir, ".partial-") == 0, "a .partial directory is left");
@@ -300,22 +258,22 @@ LZ_TEST(cli_list_and_help)
 	scene("broken.scene", "method = verlet\nthis is not a scene\n");
 	scene("notes.txt", "not a scene");
 	setenv("LZ_SCENES", dir, 1);
-	ck_assert_msg(lz("list", NULL) == 0, "lz list failed: %s", err_text);
-	ck_assert_msg(strstr(out_text, "spring") && strstr(out_text, "verlet") &&
-	              strstr(out_text, "A mass on a spring"),
-	              "lz list should show name, method and description:\n%s", out_text);
-	ck_assert_msg(strstr(out_text, "broken") && strstr(out_text, "broken:"),
-	              "a broken scene should be listed as broken:\n%s", out_text);
-	ck_assert_msg(!strstr(out_text, "notes"), "lz list showed a file that is not a .scene");
-	ck_assert_msg(lz("help", NULL) == 0 && strstr(out_text, "verlet"),
-	              "lz help should list the methods:\n%s", out_text);
-	ck_assert_msg(lz("help", "verlet", NULL) == 0, "lz help verlet failed: %s", err_text);
-	ck_assert_msg(strstr(out_text, "| dt ") && strstr(out_text, "| potential "),
-	              "lz help verlet should list the keys:\n%s", out_text);
-	ck_assert_msg(lz("help", "warp", NULL) == 2 && strstr(err_text, "unknown method 'warp'"),
-	              "lz help of an unknown method should exit 2: '%s'", err_text);
+	ck_assert_msg(lzt_cli("list", NULL) == 0, "lz list failed: %s", lzt_err);
+	ck_assert_msg(strstr(lzt_out, "spring") && strstr(lzt_out, "verlet") &&
+	              strstr(lzt_out, "A mass on a spring"),
+	              "lz list should show name, method and description:\n%s", lzt_out);
+	ck_assert_msg(strstr(lzt_out, "broken") && strstr(lzt_out, "broken:"),
+	              "a broken scene should be listed as broken:\n%s", lzt_out);
+	ck_assert_msg(!strstr(lzt_out, "notes"), "lz list showed a file that is not a .scene");
+	ck_assert_msg(lzt_cli("help", NULL) == 0 && strstr(lzt_out, "verlet"),
+	              "lz help should list the methods:\n%s", lzt_out);
+	ck_assert_msg(lzt_cli("help", "verlet", NULL) == 0, "lz help verlet failed: %s", lzt_err);
+	ck_assert_msg(strstr(lzt_out, "| dt ") && strstr(lzt_out, "| potential "),
+	              "lz help verlet should list the keys:\n%s", lzt_out);
+	ck_assert_msg(lzt_cli("help", "warp", NULL) == 2 && strstr(lzt_err, "unknown method 'warp'"),
+	              "lz help of an unknown method should exit 2: '%s'", lzt_err);
 	setenv("LZ_SCENES", lzt_path(dir, "none"), 1);
-	ck_assert_msg(lz("list", NULL) != 0, "lz list of a missing directory should fail");
+	ck_assert_msg(lzt_cli("list", NULL) != 0, "lz list of a missing directory should fail");
 	cleanup();
 }
 END_TEST

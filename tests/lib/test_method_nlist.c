@@ -322,3 +322,35 @@ LZ_TEST(nlist_summary_is_deterministic)
 	}
 }
 END_TEST
+
+/* A scene with only the required keys (a driver, and n or packing) loses no pair: nl
+ * and cl at the default skin 4 (exact at the safe interval), fnl at the skin at which
+ * its lists hold about 24 particles (lz_nwalk_fnl_skin), dense or dilute. */
+LZ_TEST(nlist_default_skin_misses_nothing)
+{
+	static const struct {
+		const char *scene;
+		double skin;  /* 0: lz_nwalk_fnl_skin of the placed disks */
+	} cases[] = {
+		{"driver=fnl;packing=0.474;seed=1", 0}, {"driver=fnl;packing=0.2;seed=2", 0},
+		{"driver=fnl;n=60;seed=3", 0},          {"driver=nl;packing=0.474;seed=4", 4},
+		{"driver=cl;packing=0.474;seed=5", 4},
+	};
+	for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+		const char *dir;
+		lzt_json *j = run_nlist(cases[k].scene, &dir);
+		double skin = cases[k].skin ? cases[k].skin
+		              : lz_nwalk_fnl_skin(LZ_LATTICE_SQUARE, 1024, 12,
+		                                  (size_t)lzt_num(j, "n_placed"));
+		ck_assert_msg(lzt_num(j, "skin_run") == skin, "%s: skin_run = %g, the default is %g",
+		              cases[k].scene, lzt_num(j, "skin_run"), skin);
+		ck_assert_msg(lzt_num(j, "missed_pairs") == 0 && lzt_num(j, "overlaps") == 0,
+		              "%s: the default skin %g missed %g pairs and left %g overlaps in 1000 "
+		              "sweeps (%.3g list entries per disk)", cases[k].scene, skin,
+		              lzt_num(j, "missed_pairs"), lzt_num(j, "overlaps"),
+		              lzt_num(j, "neighbours_per_particle"));
+		free(j);
+		lz_rmtree(dir);
+	}
+}
+END_TEST

@@ -157,6 +157,18 @@ double lz_nwalk_speed(const lz_nwalk *nw);
 lz_nwalk_params lz_nwalk_params_for(lz_nwalk_driver d, lz_lattice_kind kind, int64_t side,
                                     double radius, double packing);
 
+/* The particles the FNL lists hold by default (lz_nwalk_fnl_skin). */
+#define LZ_NWALK_FNL_ENTRIES 24.0
+
+/* A skin at which FNL's lists hold about LZ_NWALK_FNL_ENTRIES particles each, n
+ * particles of radius R in the box: Δr = R·(24/η)^(1/dim) - σ - lmax (an ideal gas at
+ * packing η holds η·(r/R)^dim particles within r of one), rounded up; at most
+ * L/2 - σ - lmax (r_l <= L/2), at least 2 lmax (a safe interval). The fast refresh
+ * finds a newcomer only through a common neighbour; the thinnest lists that missed no
+ * pair held 3 to 19 entries, more for small R (datasets/scenes/README.md, `nlist`,
+ * has the measurement and its command). The default skin of `lz run` for fnl. O(1). */
+double lz_nwalk_fnl_skin(lz_lattice_kind kind, int64_t side, double radius, size_t n);
+
 /* lz_nwalk_alloc with an mt19937 generator seeded `seed` for the placement. NULL with
  * the lz_error of the allocation. */
 lz_nwalk *lz_nwalk_alloc_seeded(const lz_nwalk_params *p, unsigned long seed);
