@@ -222,5 +222,5 @@ clean:
 
 help:
 	@echo "make deps | all | check | test STAGE=NN | grade [SUBMISSION=dir|x.tar.gz] [STAGE=NN] [ISOLATE=1]"
-	@echo "make grade-all SUBS=dir | submit | lesson STAGE=NN [QUICK=1] | demo | slides | bench | assignments | handout | mutants [STAGE=NN] | clean"
+	@echo "make grade-all SUBS=dir | submit | lesson STAGE=NN [QUICK=1] | demo | slides | bench | assignments | handout | mutants [STAGE=NN] | mpi-check | clean"
 	@echo "$(if $(wildcard solutions/.),IMPL=solutions|assignments (now: $(CONFIG)); IMPL_NN=... for one stage,your code in assignments/ (now: $(CONFIG))); SANITIZE=1 for ASan+UBSan"

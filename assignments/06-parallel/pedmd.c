@@ -60,12 +60,15 @@ int lz_pedmd_save(lz_pedmd *r, uint32_t i)
 
 void lz_pedmd_restore(lz_pedmd *r)
 {
-	/* Hint: first the heap keys of every owned particle now (r->scratch: INFINITY
-	 * for the rest), because the heap is rebuilt; then every saved version written
-	 * back (record, event, own, ghost, role, heard) with its saved key; then the system's
-	 * scalars (*r->e = r->snap: the arrays are the same), the clock (clock0) and the
-	 * waiting messages (wait0, nwait0); then lz_pedmd_rebuild, and an empty save
-	 * list and window log. See §6. */
+	/* Hint: each saved version back in O(log N): take the particle out of the cell
+	 * list it is in now (unless ABSENT: then it is in none), write back its record,
+	 * event, own, ghost, role and heard, put it into its saved cell's list (unless it
+	 * was ABSENT); in the heap, update its key or push it when it was in the heap
+	 * then, take it out when it was not (its key to -INFINITY, then pop). Then the
+	 * system's scalars (*r->e = r->snap: the arrays are the same), the clock (clock0),
+	 * the waiting messages (wait0, nwait0) and the read stamps (lz_pedmd_unread); an
+	 * empty save list and window log. Nothing of O(N): only what the window touched.
+	 * See §6. */
 	LZ_TODO();
 }
 
@@ -75,7 +78,8 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	/* Hint: as lz_edmd_step (stage 05), with the rank's twists. The top i and its
 	 * time t; nothing to do (*did = 0) when the heap is empty, t is infinite or
 	 * e->t_base + t > r->t_end. Else count it (e->events, r->counts.processed), set
-	 * e->now and r->clock to t. A stale collision (the partner's count changed):
+	 * e->now and r->clock to t; an event with a ghost reads the ghost's cell at t
+	 * (lz_pedmd_read_at). A stale collision (the partner's count changed):
 	 * note it (LZ_PEDMD_STALE), predict i again with lz_pedmd_predict and tell i's
 	 * neighbours (lz_pedmd_announce). A collision: save both, bring them to t,
 	 * bounce along lz_edmd_separation, both counts + 1, note it once (if j is a
@@ -84,8 +88,8 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	 * bounce, or a crossing — into a cell this rank owns (predict, announce with
 	 * the old cell as `from`), or into another rank's: pop i from the heap, make it
 	 * a GHOST here (own[i].t = t: when it left) and announce with that rank as
-	 * `to_owner` (it gets MIGRATE). Save
-	 * before you change anything (lz_pedmd_save). See §4. */
+	 * `to_owner` (it gets MIGRATE). Save before you change anything
+	 * (lz_pedmd_save). See §4. */
 	LZ_TODO();
 }
 

@@ -206,9 +206,10 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 	r->ghost = malloc(n * sizeof *r->ghost);
 	r->heard = malloc(n * sizeof *r->heard);
 	r->mark = calloc(n, sizeof *r->mark);
+	r->rmark = calloc(nc, sizeof *r->rmark);
 	r->scratch = malloc((n > nc ? n : nc) * sizeof *r->scratch);
 	if (!r->e || !r->cls || !r->near || !r->read || !r->load || !r->role || !r->own ||
-	    !r->ghost || !r->heard || !r->mark || !r->scratch) {
+	    !r->ghost || !r->heard || !r->mark || !r->rmark || !r->scratch) {
 		lz_pedmd_free(r);
 		return lz_error(LZ_ENOMEM, "no memory for a rank of %zu particles", n), NULL;
 	}
@@ -255,6 +256,8 @@ void lz_pedmd_free(lz_pedmd *r)
 	free(r->ghost);
 	free(r->heard);
 	free(r->mark);
+	free(r->rmark);
+	free(r->stamps);
 	free(r->scratch);
 	free(r->wait);
 	free(r->wait0);
@@ -338,8 +341,8 @@ int lz_pedmd_predict(lz_pedmd *r, uint32_t i)
 		return LZ_OK;
 	lz_edmd_block b;
 	FOR_BLOCK(e, cell, b, c)
-		if ((r->cls[c] == LZ_PEDMD_HALO || r->cls[c] == LZ_PEDMD_BORDER) && r->read[c] < e->now)
-			r->read[c] = e->now;
+		if (r->cls[c] == LZ_PEDMD_HALO || r->cls[c] == LZ_PEDMD_BORDER)
+			lz_pedmd_read_at(r, c, e->now);
 	double t = set_key(r, i);
 	return t < r->clock ? lz_pedmd_late(r, t) : LZ_OK;
 }
@@ -467,20 +470,26 @@ static lz_pedmd_message wait_pop(lz_pedmd *r)
 
 /* ---- restore ---- */
 
-void lz_pedmd_rebuild(lz_pedmd *r, const double *key)
+void lz_pedmd_read_at(lz_pedmd *r, uint32_t c, double t)
 {
-	lz_edmd *e = r->e;
-	lz_edmd_cell_clear(e);
-	for (size_t i = e->n; i-- > 0;)
-		if (r->role[i] != LZ_PEDMD_ABSENT)
-			lz_edmd_cell_insert(e, (uint32_t)i, e->p[i].cell);
-	lz_heap_clear(e->heap);
-	for (uint32_t i = 0; i < e->n; i++)
-		if (r->role[i] == LZ_PEDMD_OWNED)
-			lz_heap_push(e->heap, i, key[i]);
-	for (size_t c = 0; c < e->ncells; c++)
-		if (r->read[c] > r->e->now)
-			r->read[c] = r->e->now;
+	if (r->read[c] >= t)
+		return;
+	if (r->rmark[c] != r->epoch) {
+		if (lz_pedmd_grow((void **)&r->stamps, &r->capstamps, r->nstamps, sizeof *r->stamps)) {
+			r->nomem = 1;
+			return;
+		}
+		r->stamps[r->nstamps++] = (lz_pedmd_stamp){c, r->read[c]};
+		r->rmark[c] = r->epoch;
+	}
+	r->read[c] = t;
+}
+
+void lz_pedmd_unread(lz_pedmd *r)
+{
+	for (size_t k = 0; k < r->nstamps; k++)
+		r->read[r->stamps[k].cell] = r->stamps[k].read;
+	r->nstamps = 0;
 }
 
 /* ---- the window protocol ---- */
@@ -545,6 +554,7 @@ int lz_pedmd_begin(lz_pedmd *r, double t_end)
 	r->t_end = t_end;
 	r->epoch++;
 	r->nsaved = 0;
+	r->nstamps = 0;
 	r->snap = *e;
 	if (r->nwait > 0 && lz_pedmd_grow((void **)&r->wait0, &r->capwait0, r->nwait, sizeof *r->wait0))
 		return LZ_ENOMEM;
@@ -805,7 +815,7 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 		r->woke = 1;
 	}
 	if (r->nomem)
-		return lz_error(LZ_ENOMEM, "rank %d: no memory for the log of a window", r->rank);
+		return lz_error(LZ_ENOMEM, "rank %d: no memory for the log or the read stamps of a window", r->rank);
 	lz_msg_charge(r->msg, events);
 	if (r->t_error != INFINITY && !r->halted && (st = halt(r)) != LZ_OK)
 		return st;

@@ -109,33 +109,46 @@ int lz_pedmd_save(lz_pedmd *r, uint32_t i)
 
 void lz_pedmd_restore(lz_pedmd *r)
 {
-	/* Hint: first the heap keys of every owned particle now (r->scratch: INFINITY
-	 * for the rest), because the heap is rebuilt; then every saved version written
-	 * back (record, event, own, ghost, role, heard) with its saved key; then the system's
-	 * scalars (*r->e = r->snap: the arrays are the same), the clock (clock0) and the
-	 * waiting messages (wait0, nwait0); then lz_pedmd_rebuild, and an empty save
-	 * list and window log. See §6. */
+	/* Hint: each saved version back in O(log N): take the particle out of the cell
+	 * list it is in now (unless ABSENT: then it is in none), write back its record,
+	 * event, own, ghost, role and heard, put it into its saved cell's list (unless it
+	 * was ABSENT); in the heap, update its key or push it when it was in the heap
+	 * then, take it out when it was not (its key to -INFINITY, then pop). Then the
+	 * system's scalars (*r->e = r->snap: the arrays are the same), the clock (clock0),
+	 * the waiting messages (wait0, nwait0) and the read stamps (lz_pedmd_unread); an
+	 * empty save list and window log. Nothing of O(N): only what the window touched.
+	 * See §6. */
 	/* LZ_SOLUTION_BEGIN */
 	lz_edmd *e = r->e;
-	double *key = r->scratch;
-	for (uint32_t i = 0; i < e->n; i++)
-		key[i] = lz_heap_contains(e->heap, i) ? lz_heap_key(e->heap, i) : INFINITY;
 	for (size_t k = 0; k < r->nsaved; k++) {
 		const lz_pedmd_saved *s = &r->saved[k];
-		e->p[s->id] = s->p;
-		e->ev[s->id] = s->ev;
-		r->own[s->id] = s->own;
-		r->ghost[s->id] = s->ghost;
-		r->role[s->id] = s->role;
-		r->heard[s->id] = s->heard;
-		key[s->id] = s->in_heap ? s->key : INFINITY;
+		uint32_t i = s->id;
+		if (r->role[i] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_remove(e, i);
+		e->p[i] = s->p;
+		e->ev[i] = s->ev;
+		r->own[i] = s->own;
+		r->ghost[i] = s->ghost;
+		r->role[i] = s->role;
+		r->heard[i] = s->heard;
+		if (s->role != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, i, s->p.cell);
+		int in = lz_heap_contains(e->heap, i);
+		if (s->in_heap && in) {
+			lz_heap_update(e->heap, i, s->key);
+		} else if (s->in_heap) {
+			lz_heap_push(e->heap, i, s->key);
+		} else if (in) {
+			lz_heap_update(e->heap, i, -INFINITY);  /* to the top, then off */
+			lz_heap_pop(e->heap);
+		}
 	}
 	*e = r->snap;
 	r->clock = r->clock0;
 	if (r->nwait0 > 0)
 		memcpy(r->wait, r->wait0, r->nwait0 * sizeof *r->wait);
 	r->nwait = r->nwait0;
-	lz_pedmd_rebuild(r, key);
+	lz_pedmd_unread(r);
 	r->nsaved = 0;
 	r->nwlog = 0;
 	r->wcommit = 0;
@@ -230,7 +243,8 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	/* Hint: as lz_edmd_step (stage 05), with the rank's twists. The top i and its
 	 * time t; nothing to do (*did = 0) when the heap is empty, t is infinite or
 	 * e->t_base + t > r->t_end. Else count it (e->events, r->counts.processed), set
-	 * e->now and r->clock to t. A stale collision (the partner's count changed):
+	 * e->now and r->clock to t; an event with a ghost reads the ghost's cell at t
+	 * (lz_pedmd_read_at). A stale collision (the partner's count changed):
 	 * note it (LZ_PEDMD_STALE), predict i again with lz_pedmd_predict and tell i's
 	 * neighbours (lz_pedmd_announce). A collision: save both, bring them to t,
 	 * bounce along lz_edmd_separation, both counts + 1, note it once (if j is a
@@ -239,8 +253,8 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	 * bounce, or a crossing — into a cell this rank owns (predict, announce with
 	 * the old cell as `from`), or into another rank's: pop i from the heap, make it
 	 * a GHOST here (own[i].t = t: when it left) and announce with that rank as
-	 * `to_owner` (it gets MIGRATE). Save
-	 * before you change anything (lz_pedmd_save). See §4. */
+	 * `to_owner` (it gets MIGRATE). Save before you change anything
+	 * (lz_pedmd_save). See §4. */
 	/* LZ_SOLUTION_BEGIN */
 	lz_edmd *e = r->e;
 	*did = 0;
@@ -256,9 +270,8 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	e->now = t;
 	r->clock = t;
 	lz_edmd_event ev = e->ev[i];
-	if (ev.partner >= 0 && r->role[ev.partner] == LZ_PEDMD_GHOST &&
-	    r->read[e->p[ev.partner].cell] < t)
-		r->read[e->p[ev.partner].cell] = t;  /* the ghost's record is used at t */
+	if (ev.partner >= 0 && r->role[ev.partner] == LZ_PEDMD_GHOST)
+		lz_pedmd_read_at(r, e->p[ev.partner].cell, t);  /* the ghost's record is used at t */
 	if (ev.partner >= 0) {
 		uint32_t j = (uint32_t)ev.partner;
 		if (e->p[j].count == ev.pcount)

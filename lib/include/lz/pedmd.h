@@ -143,6 +143,12 @@ typedef struct {
 	double key, heard;
 } lz_pedmd_saved;
 
+/* A read stamp as it was before this window first raised it (lz_pedmd_read_at). */
+typedef struct {
+	uint32_t cell;
+	double read;
+} lz_pedmd_stamp;
+
 /* Counters of one rank. */
 typedef struct {
 	uint64_t processed;      /* events carried out, rolled back ones included */
@@ -188,7 +194,11 @@ typedef struct lz_pedmd {
 	uint8_t *cls;                 /* the class of every cell for this rank */
 	uint8_t *near;                /* 1: the cell's block holds a HALO or BORDER cell */
 	double *read;                 /* HALO and BORDER cells: the last time a prediction
-	                                 read the cell */
+	                                 read the cell (lz_pedmd_read_at) */
+	uint32_t *rmark;              /* rmark[c] == epoch: read[c] raised this window, its
+	                                 old stamp in stamps */
+	lz_pedmd_stamp *stamps;
+	size_t nstamps, capstamps;
 	uint8_t *role;                /* every particle's role */
 	lz_pedmd_event *own;          /* OWNED: its own prediction; else own[i].t is when
 	                                 this rank last handed it over (-INFINITY: never) */
@@ -199,7 +209,7 @@ typedef struct lz_pedmd {
 	double clock;                 /* the latest time the rank has reached (relative);
 	                                 e->now equals it except while a late message is
 	                                 applied at its own, earlier time */
-	double *scratch;              /* N doubles for lz_pedmd_restore */
+	double *scratch;              /* max(N, cells) doubles of room for the set-up */
 	/* messages that wait for the rank's clock: a min-heap by time */
 	lz_pedmd_message *wait;
 	size_t nwait, capwait;
@@ -225,8 +235,8 @@ typedef struct lz_pedmd {
 	uint64_t wcommit;             /* events of this window it would commit */
 	double wvirial;               /* and their virial */
 	double *load;                 /* per cell: committed events noted with that cell */
-	int nomem;                    /* 1: the window log could not grow (lz_pedmd_work
-	                                 then fails with LZ_ENOMEM) */
+	int nomem;                    /* 1: the window log or the stamps could not grow
+	                                 (lz_pedmd_work then fails with LZ_ENOMEM) */
 	lz_pedmd_counts counts;
 	/* the protocol (pedmd_lib.c) */
 	int phase;                    /* LZ_PEDMD_BEGIN .. LZ_PEDMD_DONE */
@@ -280,9 +290,11 @@ int lz_pedmd_apply(lz_pedmd *r, const lz_pedmd_message *m);
 
 /* Before particle i (present on r or not) is changed for the first time in this
  * window, save its version (lz_pedmd_saved): LZ_OK, or LZ_ENOMEM; O(1). Roll the rank
- * back to the window's start: every saved version written back, the system's scalars
- * (snap), the clock and the queue of waiting messages as they were, then the cells
- * and the heap rebuilt (lz_pedmd_rebuild). O(saved + N). */
+ * back to the window's start: every saved version written back — its record, events
+ * and role, its place in the cell lists and the heap —, the system's scalars (snap),
+ * the clock, the queue of waiting messages and the read stamps (lz_pedmd_unread) as
+ * they were. O(saved · log N + stamps + waiting): a rollback costs what the window
+ * changed, never O(N). */
 int lz_pedmd_save(lz_pedmd *r, uint32_t i);
 void lz_pedmd_restore(lz_pedmd *r);
 
@@ -353,9 +365,12 @@ double lz_pedmd_busiest(const lz_pedmd_domains *d, const double *load, const uin
 /* Queue message m until the rank's clock reaches it. LZ_OK or LZ_ENOMEM. */
 int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m);
 
-/* After a restore: rebuild the cell lists from the particles' roles and cells, and
- * the heap from the owned particles' keys. O(N + cells). */
-void lz_pedmd_rebuild(lz_pedmd *r, const double *key);
+/* A prediction at t read cell c (HALO or BORDER): read[c] = t if later, the old stamp
+ * kept the first time in a window (no memory: r->nomem). O(1). */
+void lz_pedmd_read_at(lz_pedmd *r, uint32_t c, double t);
+
+/* Every read stamp raised in this window back to what it was at its start. O(stamps). */
+void lz_pedmd_unread(lz_pedmd *r);
 
 /* 1 when every particle of cell c's block is at or before time t (relative): a
  * prediction at t can read them. O(block). */
