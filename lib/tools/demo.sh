@@ -13,6 +13,7 @@
 need_args $# 2 2 'demo.sh BUILD "STAGES"   e.g. demo.sh build "01-lozenge"'
 build=$1
 stages=$2
+tools=$(dirname "${BASH_SOURCE[0]}")
 demo=$build/demo
 page=$demo/index.html
 rm -rf "$demo"
@@ -41,31 +42,6 @@ json_pairs() {
 			} else i++
 		}
 	}' "$1"
-}
-
-# A value for people: 12,345 / 0.01234 / 1.23×10^7 (markup); text is escaped; an
-# absent value or null (how the JSON writer spells NaN) is a dash.
-pretty() {
-	local x=$1
-	if [ -z "$x" ] || [ "$x" = null ]; then
-		echo "—"
-	elif [[ $x =~ ^-?[0-9.]+([eE][-+]?[0-9]+)?$ ]]; then
-		awk -v x="$x" 'function commas(v,   s, r) {
-				s = sprintf("%d", v < 0 ? -v : v); r = ""
-				while (length(s) > 3) { r = "," substr(s, length(s) - 2) r; s = substr(s, 1, length(s) - 3) }
-				return (v < 0 ? "-" : "") s r
-			}
-			BEGIN {
-				v = x + 0; a = v < 0 ? -v : v
-				if (a == 0) print "0"
-				else if (v == int(v) && a < 1e9) print commas(v)
-				else if (a >= 1e3 && a < 1e6) print commas(int(v + (v < 0 ? -0.5 : 0.5)))
-				else if (a >= 1e-3 && a < 1e3) print sprintf("%.4g", v)
-				else { split(sprintf("%.3e", v), p, "e"); printf "%s×10<sup>%d</sup>\n", p[1], p[2] + 0 }
-			}'
-	else
-		printf '%s\n' "$x" | html_escape
-	fi
 }
 
 # The value of key in a flat JSON file ("" if absent).
@@ -121,6 +97,14 @@ emit_plots() {
 	echo '</div>'
 }
 
+# Lines of figures from a flat JSON file: rows VALUES FILE SCOPE STYLE [KEYS]
+# (lib/tools/demo_rows.awk: labels and units from demo_labels.tsv, each value with
+# its error bar on one line).
+rows() {
+	json_pairs "$1" | awk -v lib=1 -v scope="$2" -v style="$3" -v keys="${4:-}" \
+		-f "$tools/numfmt.awk" -f "$tools/demo_rows.awk" "$tools/demo_labels.tsv" -
+}
+
 # One card per experiment driver: its headline figures.
 emit_headlines() {
 	local stage=$1 out=$2 src name json check
@@ -137,13 +121,7 @@ emit_headlines() {
 		check=$(json_get "$json" check)
 		printf '<div class="card"><h4>%s <span class="badge %s">%s</span></h4><table>\n' "$name" \
 			"$([ "$check" = passed ] && echo ok || echo bad)" "$(echo "${check:-unchecked}" | html_escape)"
-		json_pairs "$json" | while IFS=$'\t' read -r key value; do
-			[ "$key" = check ] && continue
-			printf '<tr><td>%s</td><td class="%s">%s</td></tr>\n' \
-				"$(echo "$key" | tr '_' ' ' | html_escape)" \
-				"$([[ $value =~ ^-?[0-9.] || $value = null ]] && echo num || echo txt)" \
-				"$(pretty "$value")"
-		done
+		rows "$json" "$name" table
 		echo '</table></div>'
 	done
 	echo '</div>'
@@ -153,7 +131,7 @@ emit_headlines() {
 demo_keys() { grep -m1 '^# *demo:' "$1" 2>/dev/null | sed 's/^# *demo: *//'; }
 
 emit_runs() {
-	local nn=$1 out=$2 scene name summary keys key speed value err
+	local nn=$1 out=$2 scene name summary speed
 	local scenes=(datasets/scenes/"$nn"-*.scene)
 	echo '<h3>Scene runs</h3>'
 	if [ ! -e "${scenes[0]}" ]; then
@@ -170,19 +148,11 @@ emit_runs() {
 			echo '<td colspan="3" class="note">not run or failed (see the lesson log)</td></tr>'
 			continue
 		fi
-		speed=$(json_pairs "$summary" | awk -F '\t' '$1 ~ /_per_s$/ { print $1 "\t" $2 }' |
-			while IFS=$'\t' read -r key value; do
-				printf '%s %s<br>' "$(pretty "$value")" "$(echo "${key%_per_s}/s" | tr '_' ' ')"
-			done)
+		speed=$(rows "$summary" scene after \
+			"$(json_pairs "$summary" | awk -F '\t' '$1 ~ /_per_s$/ { printf "%s ", $1 }')")
 		printf '<td class="num">%s</td><td class="num">%s</td><td>' "${speed:-—}" \
-			"$(pretty "$(json_get "$summary" wall_s)")"
-		keys=$(demo_keys "$scene")
-		for key in $keys; do
-			value=$(json_get "$summary" "$key")
-			err=$(json_get "$summary" "${key}_err")
-			printf '%s = %s%s<br>' "$(echo "$key" | tr '_' ' ' | html_escape)" "$(pretty "$value")" \
-				"$([ -n "$err" ] && [ "$err" != null ] && echo " ± $(pretty "$err")")"
-		done
+			"$(rows "$summary" scene value wall_s)"
+		rows "$summary" scene lines "$(demo_keys "$scene")"
 		echo '</td></tr>'
 	done
 	echo '</table>'
@@ -231,7 +201,9 @@ header h1 { margin: 0 0 6px; font-size: 30px; letter-spacing: .5px; }
 header p { margin: 4px 0; max-width: 900px; color: #dfe8f6; }
 header code { color: #fff; background: rgba(255,255,255,.12); padding: 1px 5px; border-radius: 4px; }
 nav { margin-top: 14px; }
-nav a { color: #fff; margin-right: 16px; text-decoration: none; border-bottom: 1px solid rgba(255,255,255,.4); }
+nav ul { margin: 0; padding-left: 20px; }
+nav li { margin: 3px 0; }
+nav a { color: #fff; text-decoration: none; border-bottom: 1px solid rgba(255,255,255,.4); }
 section { background: #fff; margin: 26px 0; padding: 22px 26px; border-radius: 10px; box-shadow: 0 1px 3px rgba(0,0,0,.06); }
 h2 { margin: 0 0 4px; font-size: 23px; }
 h2 .nn { display: inline-block; background: var(--accent); color: #fff; border-radius: 6px; padding: 0 9px; margin-right: 6px; font-size: 19px; }
@@ -275,11 +247,11 @@ EOF
 	echo 'students build a small library stage by stage and run every experiment on their own code.</p>'
 	echo '<p>This page shows the experiments of every lesson at demo size, as measured on this machine by'
 	echo '<code>make demo</code>: the plots, the headline figures each experiment checked against known values,'
-	echo 'and the speed and accuracy of the ready-made scenes.</p><nav>'
+	echo 'and the speed and accuracy of the ready-made scenes.</p><nav><ul>'
 	for stage in $stages; do
-		printf '<a href="#s%s">%s %s</a>' "${stage%%-*}" "${stage%%-*}" "$(stage_title "$stage")"
+		printf '<li><a href="#s%s">%s</a></li>\n' "${stage%%-*}" "$(stage_title "$stage")"
 	done
-	echo '</nav></div></header><main class="wrap">'
+	echo '</ul></nav></div></header><main class="wrap">'
 	[ -z "$stages" ] && echo '<section><p class="note">No stages were given.</p></section>'
 	for stage in $stages; do
 		emit_stage "$stage"
