@@ -3,11 +3,14 @@
 #
 # Run after the lessons ran at demo size (lesson.sh STAGE BUILD 1). Per stage it shows
 # the lesson's title (first '# ' line of its README), every plot with its caption (the
-# '# caption:' line of its .gp script) in the order the lesson shows them, the
-# headline figures of every experiment driver (OUTDIR/NAME.json) and a table of the
-# scene runs (OUTDIR/runs/*/summary.json): the speed figures (keys ending in _per_s),
-# wall_s and the keys the scene names in its '# demo: k1 k2' line. The page is one
-# self-contained file plus img/ (inline CSS, images referenced relatively).
+# '# caption:' line of its .gp script) in the order the lesson shows them, one a row
+# at most at its own size, the headline figures of every experiment driver
+# (OUTDIR/NAME.json) and a table of the scene runs (OUTDIR/runs/*/summary.json): the
+# speed figures (keys ending in _per_s), wall_s and the keys the scene names in its
+# '# demo: k1 k2' line. Every figure is labelled in words with its unit, and a value
+# with an error bar rounded to the error's precision (demo_labels.tsv, demo_rows.awk,
+# numfmt.awk). The page is one self-contained file plus img/ (inline CSS, images
+# referenced relatively).
 # Anything missing becomes a note on the page, never a failure.
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 need_args $# 2 2 'demo.sh BUILD "STAGES"   e.g. demo.sh build "01-lozenge"'
@@ -60,13 +63,6 @@ plot_order() {
 	done
 }
 
-# "wide" for a picture more than 1.8 times as wide as high (it gets a whole row).
-png_shape() {
-	od -An -tu1 -j16 -N8 "$1" 2>/dev/null | awk 'NF == 8 {
-		w = (($1 * 256 + $2) * 256 + $3) * 256 + $4; h = (($5 * 256 + $6) * 256 + $7) * 256 + $8
-		if (h > 0 && w > 1.8 * h) print "wide"; else print "plot" }'
-}
-
 stage_title() {
 	local readme=lessons/$1/README.md
 	if [ -f "$readme" ]; then
@@ -84,8 +80,8 @@ emit_plots() {
 			sed 's/^# caption: *//' | html_escape)
 		if [ -f "$out/$name.png" ]; then
 			cp "$out/$name.png" "$demo/img/$nn-$name.png"
-			printf '<figure class="%s"><a href="img/%s-%s.png"><img src="img/%s-%s.png" alt="%s"></a>' \
-				"$(png_shape "$out/$name.png")" "$nn" "$name" "$nn" "$name" "$name"
+			printf '<figure><a href="img/%s-%s.png"><img src="img/%s-%s.png" alt="%s"></a>' \
+				"$nn" "$name" "$nn" "$name" "$name"
 		else
 			printf '<figure><div class="missing">%s.png was not made: its experiment failed or gnuplot is missing (see %s/%s.gp.log)</div>' \
 				"$name" "$out" "$name"
@@ -119,7 +115,7 @@ emit_headlines() {
 			continue
 		fi
 		check=$(json_get "$json" check)
-		printf '<div class="card"><h4>%s <span class="badge %s">%s</span></h4><table>\n' "$name" \
+		printf '<div class="card"><h4>driver <code>%s</code> <span class="badge %s">%s</span></h4><table>\n' "$name" \
 			"$([ "$check" = passed ] && echo ok || echo bad)" "$(echo "${check:-unchecked}" | html_escape)"
 		rows "$json" "$name" table
 		echo '</table></div>'
@@ -138,7 +134,7 @@ emit_runs() {
 		echo '<p class="note">This stage ships no scenes.</p>'
 		return
 	fi
-	echo '<table class="runs"><tr><th>scene</th><th>what it is</th><th>speed</th><th>wall s</th><th>measured</th></tr>'
+	echo '<table class="runs"><tr><th class="w-scene">scene</th><th class="w-what">what it is</th><th class="w-speed">speed</th><th class="w-wall">wall time</th><th>measured</th></tr>'
 	for scene in "${scenes[@]}"; do
 		name=$(basename "$scene" .scene)
 		summary=$out/runs/$name/summary.json
@@ -152,7 +148,9 @@ emit_runs() {
 			"$(json_pairs "$summary" | awk -F '\t' '$1 ~ /_per_s$/ { printf "%s ", $1 }')")
 		printf '<td class="num">%s</td><td class="num">%s</td><td>' "${speed:-—}" \
 			"$(rows "$summary" scene value wall_s)"
-		rows "$summary" scene lines "$(demo_keys "$scene")"
+		echo '<table class="kv">'
+		rows "$summary" scene table "$(demo_keys "$scene")"
+		echo '</table>'
 		echo '</td></tr>'
 	done
 	echo '</table>'
@@ -209,11 +207,9 @@ h2 { margin: 0 0 4px; font-size: 23px; }
 h2 .nn { display: inline-block; background: var(--accent); color: #fff; border-radius: 6px; padding: 0 9px; margin-right: 6px; font-size: 19px; }
 h3 { margin: 26px 0 10px; font-size: 17px; color: var(--accent); border-bottom: 1px solid var(--line); padding-bottom: 4px; }
 .meta { color: var(--muted); font-size: 13px; margin: 0 0 12px; }
-.plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(520px, 1fr)); gap: 18px; }
+.plots { display: grid; grid-template-columns: 1fr; gap: 18px; }
 figure { margin: 0; border: 1px solid var(--line); border-radius: 8px; overflow: hidden; background: #fff; }
-figure img { width: 100%; display: block; }
-figure.wide { grid-column: 1 / -1; }
-figure.wide img { max-width: 1150px; margin: 0 auto; }
+figure img { display: block; max-width: 100%; margin: 0 auto; }
 figcaption { padding: 10px 12px; font-size: 13.5px; color: #333; border-top: 1px solid var(--line); background: #fbfbfc; }
 .cards { display: grid; grid-template-columns: repeat(auto-fill, minmax(330px, 1fr)); gap: 14px; }
 .card { border: 1px solid var(--line); border-radius: 8px; padding: 10px 12px; }
@@ -228,6 +224,10 @@ td.txt { text-align: right; color: var(--muted); }
 table.runs { width: 100%; border-collapse: collapse; font-size: 13.5px; }
 table.runs th { text-align: left; background: #f0f3f8; padding: 6px 8px; }
 table.runs td { padding: 6px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
+table.runs td code { white-space: nowrap; }
+.w-scene { width: 10%; } .w-what { width: 32%; } .w-speed { width: 15%; } .w-wall { width: 7%; }
+table.kv { width: 100%; border-collapse: collapse; font-size: 13px; }
+table.kv td { padding: 1px 4px; border-bottom: 1px solid #f0f1f4; vertical-align: top; }
 .note, .missing { color: #8a5a00; background: #fff7e0; padding: 6px 10px; border-radius: 6px; }
 .missing { margin: 12px; }
 footer { color: var(--muted); font-size: 13px; padding: 8px 0 40px; }
@@ -247,7 +247,10 @@ EOF
 	echo 'students build a small library stage by stage and run every experiment on their own code.</p>'
 	echo '<p>This page shows the experiments of every lesson at demo size, as measured on this machine by'
 	echo '<code>make demo</code>: the plots, the headline figures each experiment checked against known values,'
-	echo 'and the speed and accuracy of the ready-made scenes.</p><nav><ul>'
+	echo 'and the speed and accuracy of the ready-made scenes. Each caption says what the plot shows at demo size and,'
+	echo 'where it differs, at full size (<code>make lesson STAGE=NN</code>). &ldquo;The thesis&rdquo; is T. F. Nagy,'
+	echo '<i>Computational methods to simulate large classical particle systems</i>, PhD thesis, Michigan State University (2000),'
+	echo 'on which the course is built; &ldquo;lesson NN &sect;k&rdquo; is a section of <code>lessons/NN-*/README.md</code>.</p><nav><ul>'
 	for stage in $stages; do
 		printf '<li><a href="#s%s">%s</a></li>\n' "${stage%%-*}" "$(stage_title "$stage")"
 	done

@@ -5,8 +5,8 @@
 #   -v scope=NAME   the experiment driver, or "scene" (which rows of the table apply)
 #   -v keys="k ..." only these keys, in this order (a scene's '# demo:' line);
 #                   empty: every key but check, in the file's order
-#   -v style=table  <tr><td>label</td><td>value unit</td></tr> per key (a card);
-#   -v style=lines  label = value unit<br> per key (a cell of the scene table);
+#   -v style=table  <tr><td>label</td><td>value unit</td></tr> per key (a card, the
+#                   measured figures of a scene run);
 #   -v style=after  value label<br> (speeds: 2.5×10<sup>6</sup> events per second);
 #   -v style=value  the value and unit alone
 # A key K_err goes with K; a key without a row in the table is shown with its '_'
@@ -75,9 +75,7 @@ END {
 			text = numfmt(shown(v), value[k "_err"])
 		if (UNIT != "" && UNIT != "#" && text != "—") text = text " " UNIT
 		cls = isnum(v) || v == "null" || v == "" ? "num" : "txt"
-		if (style == "lines")
-			printf "%s = %s<br>", LABEL, text
-		else if (style == "after")
+		if (style == "after")
 			printf "%s %s<br>", text, LABEL
 		else if (style == "value")
 			printf "%s", text
