@@ -225,7 +225,7 @@ table.runs { width: 100%; border-collapse: collapse; font-size: 13.5px; }
 table.runs th { text-align: left; background: #f0f3f8; padding: 6px 8px; }
 table.runs td { padding: 6px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
 table.runs td code { white-space: nowrap; }
-.w-scene { width: 10%; } .w-what { width: 32%; } .w-speed { width: 15%; } .w-wall { width: 7%; }
+.w-scene { width: 10%; } .w-what { width: 27%; } .w-speed { width: 14%; } .w-wall { width: 6%; }
 table.kv { width: 100%; border-collapse: collapse; font-size: 13px; }
 table.kv td { padding: 1px 4px; border-bottom: 1px solid #f0f1f4; vertical-align: top; }
 .note, .missing { color: #8a5a00; background: #fff7e0; padding: 6px 10px; border-radius: 6px; }

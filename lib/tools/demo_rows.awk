@@ -9,7 +9,7 @@
 #                   measured figures of a scene run);
 #   -v style=after  value label<br> (speeds: 2.5×10<sup>6</sup> events per second);
 #   -v style=value  the value and unit alone
-# A key K_err goes with K; a key without a row in the table is shown with its '_'
+# A key K_err goes on K's line when K is shown; a key without a row in the table is shown with its '_'
 # as spaces.
 BEGIN { FS = "\t" }
 
@@ -63,9 +63,11 @@ FNR == NR {
 END {
 	if (keys != "")
 		nkey = split(keys, order, " ")
+	for (i = 1; i <= nkey; i++)
+		listed[order[i]] = 1
 	for (i = 1; i <= nkey; i++) {
 		k = order[i]
-		if (keys == "" && (k == "check" || (k ~ /_err$/ && substr(k, 1, length(k) - 4) in value)))
+		if ((keys == "" && k == "check") || (k ~ /_err$/ && substr(k, 1, length(k) - 4) in listed))
 			continue
 		lookup(k)
 		v = (k in value) ? value[k] : ""
