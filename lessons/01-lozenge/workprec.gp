@@ -8,7 +8,7 @@ set format y "10^{%L}"
 set grid xtics ytics lc rgb "#e8e8e8"
 set ylabel "rms position error at T (relative)"
 set yrange [1e-14:10]
-set key bottom right font "sans,9" opaque box lc rgb "#cccccc" spacing 1.05 samplen 2 width -4
+set key bottom left font "sans,9" opaque box lc rgb "#cccccc" spacing 1.05 samplen 2 width -4
 
 set style line 1 lc rgb "#d62728" lw 2 pt 7 ps 0.7
 set style line 2 lc rgb "#ff7f0e" lw 2 pt 5 ps 0.7
@@ -19,7 +19,8 @@ set style line 6 lc rgb "#222222" lw 2 pt 13 ps 0.9
 
 set title "cost = force evaluations"
 set xlabel "force evaluations"
-set xrange [5:3e6]
+set autoscale xfix
+set offsets graph 0.04, graph 0.04, 0, 0
 plot 'workprec_euler.dat' u 2:4 w lp ls 1 t "Euler", \
      'workprec_symplectic-euler.dat' u 2:4 w lp ls 2 t "symplectic Euler", \
      'workprec_verlet.dat' u 2:4 w lp ls 3 t "Verlet", \
@@ -29,7 +30,6 @@ plot 'workprec_euler.dat' u 2:4 w lp ls 1 t "Euler", \
 
 set title "cost = CPU time (same symbols)"
 set xlabel "CPU time [s]"
-set xrange [*:*]
 unset key
 plot 'workprec_euler.dat' u 3:4 w lp ls 1 t "Euler", \
      'workprec_symplectic-euler.dat' u 3:4 w lp ls 2 t "symplectic Euler", \

@@ -9,8 +9,18 @@ set xlabel "x [lattice units]"
 set ylabel "y [lattice units]"
 sel(k, c) = ($1 == k) ? column(c) : NaN
 title(k) = k == 0 ? "square, random walk" : k == 1 ? "square, ballistic" : k == 2 ? "triangular, random walk" : "triangular, ballistic"
+# each path in a square window around it, so that every panel is equally large at
+# its own scale (x and y share one scale within a panel: the turns keep their angles)
 do for [k in "0 2 1 3"] {
+	stats 'tracks.dat' u (sel(k + 0, 2)):(sel(k + 0, 3)) nooutput name "P"
+	half = 0.55 * ((P_max_x - P_min_x) > (P_max_y - P_min_y) ? P_max_x - P_min_x : P_max_y - P_min_y) + 1
+	cx = 0.5 * (P_max_x + P_min_x)
+	cy = 0.5 * (P_max_y + P_min_y)
+	set xrange [cx - half : cx + half]
+	set yrange [cy - half : cy + half]
 	set title title(k + 0)
 	plot 'tracks.dat' u (sel(k + 0, 2)):(sel(k + 0, 3)) w l lw 1 lc rgb (k + 0 < 2 ? "#1f77b4" : "#d62728")
+	set xrange [*:*]
+	set yrange [*:*]
 }
 unset multiplot

@@ -1,4 +1,4 @@
-# caption: The particle as a painted shape. (a) The excluded disk of a particle with R = 4 on the square lattice (all sites closer than σ = 8 to its centre, a site at exactly 8 is outside) and what a step along +x changes: it gains the green head points and loses the red tail points; the grey body is not touched. (b) Circles of radius 6, 8, 10 and 10.9 on the triangular lattice, drawn where the sites are (only the rim of each set is shown). (c) The same point sets in the sheared storage coordinates the program uses: ellipses x² + xy + y² < r² (thesis fig. 2.14). (d) Points per shape (area) and head points per step (perimeter) against r, with the continuum values πr²/cell and 2ra/cell (4/3πr³ and πr²a in 3D, a the step length): moving costs r^(d−1), painting r^d. The cubic head points lie on top of the square |S| points: the crescent a sphere sweeps in one step is a disk of its radius. From `shapes`, exact counts.
+# caption: The particle as a painted shape. (a) The excluded disk of a particle with R = 4 on the square lattice (all sites closer than σ = 8 to its centre, a site at exactly 8 is outside) and what a step along +x changes: it gains the green head points and loses the red tail points; the grey body is not touched. (b) Circles of radius 6, 8, 10 and 10.9 on the triangular lattice, drawn where the sites are (only the rim of each set is shown). (c) The same point sets in the sheared storage coordinates the program uses: ellipses x² + xy + y² < r² (thesis fig. 2.14). (d) Points per shape (area) and head points per step (perimeter) against r, with the continuum values πr²/cell and 2ra/cell (4/3πr³ and πr²a in 3D, a the step length): moving costs r^(d−1), painting r^d. The cubic head points lie on top of the square |S| points: the crescent a sphere sweeps in one step is a disk of its radius. Exact counts from the lesson's driver shapes.
 set terminal pngcairo size 1100,1000 font "sans,11"
 set output 'shapes.png'
 set multiplot layout 2,2
@@ -26,7 +26,8 @@ set autoscale xy
 set logscale xy
 set title "(d) cost of painting (area) and of a step (perimeter)"
 set xlabel "r = 2R [lattice units]"; set ylabel "points"
-set key inside bottom right font "sans,9" samplen 2 spacing 1.1
+set key below font "sans,9" samplen 2 maxrows 3
+set format y "10^{%L}"
 # shapes_cost.dat: square8 rows 0-47 (8 steps per r), triangular 48-83 (6), cubic26 84- (26);
 # every n::first picks the axis step of each radius
 plot 'shapes_cost.dat' every 8::0::47 u 2:($5*pi*$2**2) w lp pt 5 lc rgb "#1f77b4" t "|S|, square", \

@@ -17,6 +17,7 @@ set key bottom left
 set title "energy per particle"
 set xlabel "sweep"; set ylabel "E / N [ε]"
 set grid xtics ytics lc rgb "#e8e8e8"
+set xtics 10000
 plot 'runs/03-well-cold/energy.dat' u 1:2 w l lw 2 lc rgb "#2171b5" t "kT = 0.4 ε", \
      'runs/03-well-hot/energy.dat' u 1:2 w l lw 2 lc rgb "#cb181d" t "kT = 2 ε"
 unset multiplot

@@ -1,10 +1,11 @@
-# caption: Where the bytes are, measured by cell_order.c on the system of table 2.2 (hard disks R = 12, packing 0.474, N = 1099 … 1.1 million; CL at skin 7, FNL at skin 32). Atom-steps per CPU second (median of 3, shared 2-core AMD EPYC) of the cell-list driver with linked lists (open circles, dashed) or fixed arrays (filled), the particles numbered as placed — random in space — or cell by cell in row-major or Morton order, and of the fast neighbour list as placed and in Morton order. In the caches the variants run alike (13–17 million); outside, numbering the particles cell by cell is what pays — at 1.1 million disks 7.7 times for CL with arrays, 2.7 times for FNL — because a step reads the positions of its candidates. Linked lists are no slower than arrays once the numbering is right, and for a sweep row-major order beat Morton order.
+# caption: Where the bytes are, measured by the lesson's driver cell_order on the system of table 2.2 (hard disks R = 12, packing 0.474, N = 1099 … 1.1 million; CL at skin 7, FNL at skin 32). Atom-steps per CPU second (median of 3, shared 2-core AMD EPYC) of the cell-list driver with linked lists (open circles, dashed) or fixed arrays (filled), the particles numbered as placed — random in space — or cell by cell in row-major or Morton order, and of the fast neighbour list as placed and in Morton order. In the caches the variants run alike (12–17 million); outside, numbering the particles cell by cell is what pays — at 1.1 million disks (full size, make lesson STAGE=04) 7.7 times for CL with arrays, 2.7 times for FNL; at demo size, 70 315 disks at most, 2.0 and 1.3 times — because a step reads the positions of its candidates. Linked lists are no slower than arrays once the numbering is right, and for a sweep row-major order beat Morton order.
 set terminal pngcairo size 900,580 font "sans,11"
 set output 'cell_order.png'
 set grid xtics ytics mxtics lc rgb "#e8e8e8"
 set key font "sans,10" samplen 3 opaque box lc rgb "#cccccc" bottom left
 set logscale x
-set xrange [700:2e6]
+stats 'cell_order.dat' u 1 nooutput name "N"
+set xrange [N_min / 1.5 : N_max * 1.5]
 set yrange [0:*]
 set format x "10^{%T}"
 set xlabel "particles N"

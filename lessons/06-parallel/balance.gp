@@ -1,4 +1,4 @@
-# caption: Load balance (balance.c). A 2D system that is not uniform: a dense square (η = 0.45) in one quarter of a periodic box, a dilute gas (η = 0.05) in the rest, melted. (a) The committed events per cell of a pilot run (P = 8 along the Morton curve, even cuts, the first quarter of the measured time): the dense square does almost all the work. (b) The owners of the cells when the Morton curve is cut into 8 runs of equally many cells: three ranks hold nearly all of the dense square. (c) The owners when the curve is cut where the running total of the pilot's load reaches k/8 (lz_pedmd_rebalance): the dense square is shared out, and one large domain holds most of the dilute gas. (d) Each rank's committed events in the measured run, even and balanced cuts. (e) The imbalance, the largest rank's committed events over the mean, against P. (f) Speed-up against one rank in virtual time on the cluster (1 µs an event, 0.5 µs a message, 2 µs latency), with the best window for each run. Balance pays along the Morton curve at every P; along rows at P = 16 the balanced slabs in the dense part become thin, the share of the events in border cells (printed by the driver) rises from 15 % to 27 %, and the rollbacks eat the gain. Every run commits the serial events, bit for bit.
+# caption: Load balance (the lesson's driver balance). A 2D system that is not uniform: a dense square (η = 0.45) in one quarter of a periodic box, a dilute gas (η = 0.05) in the rest, melted. (a) The committed events per cell of a pilot run (P = 8 along the Morton curve, even cuts, the first quarter of the measured time): the dense square does almost all the work. (b) The owners of the cells when the Morton curve is cut into 8 runs of equally many cells: three ranks hold nearly all of the dense square. (c) The owners when the curve is cut where the running total of the pilot's load reaches k/8 (lesson 06 §8): the dense square is shared out, and one large domain holds most of the dilute gas. (d) Each rank's committed events in the measured run, even and balanced cuts. (e) The imbalance, the largest rank's committed events over the mean, against P. (f) Speed-up against one rank in virtual time on the cluster (1 µs an event, 0.5 µs a message, 2 µs latency), with the best window for each run. Balance pays along the Morton curve at every P; along rows the balanced slabs in the dense part become thin, the share of the events in border cells (printed by the driver) doubles, and the rollbacks eat the gain — at P = 16 at full size (make lesson STAGE=06: 15 % to 27 %), already at P = 8 at demo size (9 % to 20 %, P ≤ 8). Every run commits the serial events, bit for bit.
 set terminal pngcairo size 1400,900 font "sans,11"
 set output 'balance.png'
 set multiplot layout 2,3 title "Load balance: even cuts against cuts balanced on a pilot run's load"
@@ -45,7 +45,9 @@ set title "(e) imbalance: largest rank load / mean"
 set xlabel "ranks P"
 set ylabel "largest / mean"
 set logscale x 2
-set xrange [3:20]
+stats 'balance.dat' u 1 nooutput name "P"
+set xrange [P_min / 1.3 : P_max * 1.3]
+set xtics 2
 set yrange [0.9:*]
 set key center right
 sel(k, b) = ($2 == k && $3 == b)

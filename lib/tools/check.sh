@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# make check — the test command: every suite against the reference must pass 100 %,
+# make check — the test command: every suite against the reference must pass 100 %
+# (and the demo page's number format, tests/lib/check_numfmt.sh),
 # the committed assignments must be current, the stub audit and the grader
 # fixtures must pass, a realistic bug in every graded function must fail the tests
 # that call it (one mutant each; `make mutants` runs them all), `make lesson` must
@@ -59,6 +60,7 @@ suite() {  # suite NAME: the Check suite tests/NAME with all its rubric files, i
 }
 
 step "suite lib" suite lib
+step "the demo page's number format" bash tests/lib/check_numfmt.sh
 for s in $stages; do
 	step "suite $s (reference solutions)" suite "$s"
 done

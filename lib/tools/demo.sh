@@ -3,16 +3,20 @@
 #
 # Run after the lessons ran at demo size (lesson.sh STAGE BUILD 1). Per stage it shows
 # the lesson's title (first '# ' line of its README), every plot with its caption (the
-# '# caption:' line of its .gp script) in the order the lesson shows them, the
-# headline figures of every experiment driver (OUTDIR/NAME.json) and a table of the
-# scene runs (OUTDIR/runs/*/summary.json): the speed figures (keys ending in _per_s),
-# wall_s and the keys the scene names in its '# demo: k1 k2' line. The page is one
-# self-contained file plus img/ (inline CSS, images referenced relatively).
+# '# caption:' line of its .gp script) in the order the lesson shows them, one a row
+# at most at its own size, the headline figures of every experiment driver
+# (OUTDIR/NAME.json) and a table of the scene runs (OUTDIR/runs/*/summary.json): the
+# speed figures (keys ending in _per_s), wall_s and the keys the scene names in its
+# '# demo: k1 k2' line. Every figure is labelled in words with its unit, and a value
+# with an error bar rounded to the error's precision (demo_labels.tsv, demo_rows.awk,
+# numfmt.awk). The page is one self-contained file plus img/ (inline CSS, images
+# referenced relatively).
 # Anything missing becomes a note on the page, never a failure.
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 need_args $# 2 2 'demo.sh BUILD "STAGES"   e.g. demo.sh build "01-lozenge"'
 build=$1
 stages=$2
+tools=$(dirname "${BASH_SOURCE[0]}")
 demo=$build/demo
 page=$demo/index.html
 rm -rf "$demo"
@@ -43,31 +47,6 @@ json_pairs() {
 	}' "$1"
 }
 
-# A value for people: 12,345 / 0.01234 / 1.23×10^7 (markup); text is escaped; an
-# absent value or null (how the JSON writer spells NaN) is a dash.
-pretty() {
-	local x=$1
-	if [ -z "$x" ] || [ "$x" = null ]; then
-		echo "—"
-	elif [[ $x =~ ^-?[0-9.]+([eE][-+]?[0-9]+)?$ ]]; then
-		awk -v x="$x" 'function commas(v,   s, r) {
-				s = sprintf("%d", v < 0 ? -v : v); r = ""
-				while (length(s) > 3) { r = "," substr(s, length(s) - 2) r; s = substr(s, 1, length(s) - 3) }
-				return (v < 0 ? "-" : "") s r
-			}
-			BEGIN {
-				v = x + 0; a = v < 0 ? -v : v
-				if (a == 0) print "0"
-				else if (v == int(v) && a < 1e9) print commas(v)
-				else if (a >= 1e3 && a < 1e6) print commas(int(v + (v < 0 ? -0.5 : 0.5)))
-				else if (a >= 1e-3 && a < 1e3) print sprintf("%.4g", v)
-				else { split(sprintf("%.3e", v), p, "e"); printf "%s×10<sup>%d</sup>\n", p[1], p[2] + 0 }
-			}'
-	else
-		printf '%s\n' "$x" | html_escape
-	fi
-}
-
 # The value of key in a flat JSON file ("" if absent).
 json_get() { json_pairs "$1" | awk -F '\t' -v k="$2" '$1 == k { print $2; exit }'; }
 
@@ -82,13 +61,6 @@ plot_order() {
 	} | awk '!seen[$0]++' | while read -r name; do
 		[ -f "$lesson/$name.gp" ] && echo "$name"
 	done
-}
-
-# "wide" for a picture more than 1.8 times as wide as high (it gets a whole row).
-png_shape() {
-	od -An -tu1 -j16 -N8 "$1" 2>/dev/null | awk 'NF == 8 {
-		w = (($1 * 256 + $2) * 256 + $3) * 256 + $4; h = (($5 * 256 + $6) * 256 + $7) * 256 + $8
-		if (h > 0 && w > 1.8 * h) print "wide"; else print "plot" }'
 }
 
 stage_title() {
@@ -108,8 +80,8 @@ emit_plots() {
 			sed 's/^# caption: *//' | html_escape)
 		if [ -f "$out/$name.png" ]; then
 			cp "$out/$name.png" "$demo/img/$nn-$name.png"
-			printf '<figure class="%s"><a href="img/%s-%s.png"><img src="img/%s-%s.png" alt="%s"></a>' \
-				"$(png_shape "$out/$name.png")" "$nn" "$name" "$nn" "$name" "$name"
+			printf '<figure><a href="img/%s-%s.png"><img src="img/%s-%s.png" alt="%s"></a>' \
+				"$nn" "$name" "$nn" "$name" "$name"
 		else
 			printf '<figure><div class="missing">%s.png was not made: its experiment failed or gnuplot is missing (see %s/%s.gp.log)</div>' \
 				"$name" "$out" "$name"
@@ -119,6 +91,14 @@ emit_plots() {
 	done < <(plot_order "lessons/$stage")
 	[ "$shown" = 0 ] && echo '<p class="note">This lesson has no plots.</p>'
 	echo '</div>'
+}
+
+# Lines of figures from a flat JSON file: rows VALUES FILE SCOPE STYLE [KEYS]
+# (lib/tools/demo_rows.awk: labels and units from demo_labels.tsv, each value with
+# its error bar on one line).
+rows() {
+	json_pairs "$1" | awk -v lib=1 -v scope="$2" -v style="$3" -v keys="${4:-}" \
+		-f "$tools/numfmt.awk" -f "$tools/demo_rows.awk" "$tools/demo_labels.tsv" -
 }
 
 # One card per experiment driver: its headline figures.
@@ -135,15 +115,9 @@ emit_headlines() {
 			continue
 		fi
 		check=$(json_get "$json" check)
-		printf '<div class="card"><h4>%s <span class="badge %s">%s</span></h4><table>\n' "$name" \
+		printf '<div class="card"><h4>driver <code>%s</code> <span class="badge %s">%s</span></h4><table>\n' "$name" \
 			"$([ "$check" = passed ] && echo ok || echo bad)" "$(echo "${check:-unchecked}" | html_escape)"
-		json_pairs "$json" | while IFS=$'\t' read -r key value; do
-			[ "$key" = check ] && continue
-			printf '<tr><td>%s</td><td class="%s">%s</td></tr>\n' \
-				"$(echo "$key" | tr '_' ' ' | html_escape)" \
-				"$([[ $value =~ ^-?[0-9.] || $value = null ]] && echo num || echo txt)" \
-				"$(pretty "$value")"
-		done
+		rows "$json" "$name" table
 		echo '</table></div>'
 	done
 	echo '</div>'
@@ -153,14 +127,14 @@ emit_headlines() {
 demo_keys() { grep -m1 '^# *demo:' "$1" 2>/dev/null | sed 's/^# *demo: *//'; }
 
 emit_runs() {
-	local nn=$1 out=$2 scene name summary keys key speed value err
+	local nn=$1 out=$2 scene name summary speed
 	local scenes=(datasets/scenes/"$nn"-*.scene)
 	echo '<h3>Scene runs</h3>'
 	if [ ! -e "${scenes[0]}" ]; then
 		echo '<p class="note">This stage ships no scenes.</p>'
 		return
 	fi
-	echo '<table class="runs"><tr><th>scene</th><th>what it is</th><th>speed</th><th>wall s</th><th>measured</th></tr>'
+	echo '<table class="runs"><tr><th class="w-scene">scene</th><th class="w-what">what it is</th><th class="w-speed">speed</th><th class="w-wall">wall time</th><th>measured</th></tr>'
 	for scene in "${scenes[@]}"; do
 		name=$(basename "$scene" .scene)
 		summary=$out/runs/$name/summary.json
@@ -170,19 +144,13 @@ emit_runs() {
 			echo '<td colspan="3" class="note">not run or failed (see the lesson log)</td></tr>'
 			continue
 		fi
-		speed=$(json_pairs "$summary" | awk -F '\t' '$1 ~ /_per_s$/ { print $1 "\t" $2 }' |
-			while IFS=$'\t' read -r key value; do
-				printf '%s %s<br>' "$(pretty "$value")" "$(echo "${key%_per_s}/s" | tr '_' ' ')"
-			done)
+		speed=$(rows "$summary" scene after \
+			"$(json_pairs "$summary" | awk -F '\t' '$1 ~ /_per_s$/ { printf "%s ", $1 }')")
 		printf '<td class="num">%s</td><td class="num">%s</td><td>' "${speed:-—}" \
-			"$(pretty "$(json_get "$summary" wall_s)")"
-		keys=$(demo_keys "$scene")
-		for key in $keys; do
-			value=$(json_get "$summary" "$key")
-			err=$(json_get "$summary" "${key}_err")
-			printf '%s = %s%s<br>' "$(echo "$key" | tr '_' ' ' | html_escape)" "$(pretty "$value")" \
-				"$([ -n "$err" ] && [ "$err" != null ] && echo " ± $(pretty "$err")")"
-		done
+			"$(rows "$summary" scene value wall_s)"
+		echo '<table class="kv">'
+		rows "$summary" scene table "$(demo_keys "$scene")"
+		echo '</table>'
 		echo '</td></tr>'
 	done
 	echo '</table>'
@@ -222,17 +190,17 @@ header h1 { margin: 0 0 6px; font-size: 30px; letter-spacing: .5px; }
 header p { margin: 4px 0; max-width: 900px; color: #dfe8f6; }
 header code { color: #fff; background: rgba(255,255,255,.12); padding: 1px 5px; border-radius: 4px; }
 nav { margin-top: 14px; }
-nav a { color: #fff; margin-right: 16px; text-decoration: none; border-bottom: 1px solid rgba(255,255,255,.4); }
+nav ul { margin: 0; padding-left: 20px; }
+nav li { margin: 3px 0; }
+nav a { color: #fff; text-decoration: none; border-bottom: 1px solid rgba(255,255,255,.4); }
 section { background: #fff; margin: 26px 0; padding: 22px 26px; border-radius: 10px; box-shadow: 0 1px 3px rgba(0,0,0,.06); }
 h2 { margin: 0 0 4px; font-size: 23px; }
 h2 .nn { display: inline-block; background: var(--accent); color: #fff; border-radius: 6px; padding: 0 9px; margin-right: 6px; font-size: 19px; }
 h3 { margin: 26px 0 10px; font-size: 17px; color: var(--accent); border-bottom: 1px solid var(--line); padding-bottom: 4px; }
 .meta { color: var(--muted); font-size: 13px; margin: 0 0 12px; }
-.plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(520px, 1fr)); gap: 18px; }
+.plots { display: grid; grid-template-columns: 1fr; gap: 18px; }
 figure { margin: 0; border: 1px solid var(--line); border-radius: 8px; overflow: hidden; background: #fff; }
-figure img { width: 100%; display: block; }
-figure.wide { grid-column: 1 / -1; }
-figure.wide img { max-width: 1150px; margin: 0 auto; }
+figure img { display: block; max-width: 100%; margin: 0 auto; }
 figcaption { padding: 10px 12px; font-size: 13.5px; color: #333; border-top: 1px solid var(--line); background: #fbfbfc; }
 .cards { display: grid; grid-template-columns: repeat(auto-fill, minmax(330px, 1fr)); gap: 14px; }
 .card { border: 1px solid var(--line); border-radius: 8px; padding: 10px 12px; }
@@ -247,6 +215,10 @@ td.txt { text-align: right; color: var(--muted); }
 table.runs { width: 100%; border-collapse: collapse; font-size: 13.5px; }
 table.runs th { text-align: left; background: #f0f3f8; padding: 6px 8px; }
 table.runs td { padding: 6px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
+table.runs td code { white-space: nowrap; }
+.w-scene { width: 10%; } .w-what { width: 27%; } .w-speed { width: 14%; } .w-wall { width: 6%; }
+table.kv { width: 100%; border-collapse: collapse; font-size: 13px; }
+table.kv td { padding: 1px 4px; border-bottom: 1px solid #f0f1f4; vertical-align: top; }
 .note, .missing { color: #8a5a00; background: #fff7e0; padding: 6px 10px; border-radius: 6px; }
 .missing { margin: 12px; }
 footer { color: var(--muted); font-size: 13px; padding: 8px 0 40px; }
@@ -266,11 +238,14 @@ EOF
 	echo 'students build a small library stage by stage and run every experiment on their own code.</p>'
 	echo '<p>This page shows the experiments of every lesson at demo size, as measured on this machine by'
 	echo '<code>make demo</code>: the plots, the headline figures each experiment checked against known values,'
-	echo 'and the speed and accuracy of the ready-made scenes.</p><nav>'
+	echo 'and the speed and accuracy of the ready-made scenes. Each caption says what the plot shows at demo size and,'
+	echo 'where it differs, at full size (<code>make lesson STAGE=NN</code>). &ldquo;The thesis&rdquo; is T. F. Nagy,'
+	echo '<i>Computational methods to simulate large classical particle systems</i>, PhD thesis, Michigan State University (2000),'
+	echo 'on which the course is built; &ldquo;lesson NN &sect;k&rdquo; is a section of <code>lessons/NN-*/README.md</code>.</p><nav><ul>'
 	for stage in $stages; do
-		printf '<a href="#s%s">%s %s</a>' "${stage%%-*}" "${stage%%-*}" "$(stage_title "$stage")"
+		printf '<li><a href="#s%s">%s</a></li>\n' "${stage%%-*}" "$(stage_title "$stage")"
 	done
-	echo '</nav></div></header><main class="wrap">'
+	echo '</ul></nav></div></header><main class="wrap">'
 	[ -z "$stages" ] && echo '<section><p class="note">No stages were given.</p></section>'
 	for stage in $stages; do
 		emit_stage "$stage"
