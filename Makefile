@@ -198,6 +198,7 @@ slides: all
 
 bench: all
 	@bash lib/tools/bench.sh "$(BUILD)"
+	@bash lib/tools/bench-mpi.sh "$(BUILD)"
 
 assignments:
 	@bash lib/tools/mkassign.sh solutions assignments
