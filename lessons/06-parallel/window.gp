@@ -25,7 +25,8 @@ set y2tics
 set ytics nomirror
 # both axes leave the top fifth to the key
 stats 'window.dat' u ($9 / 1024) nooutput name "SAVED"
-set yrange [0:0.8]
+stats 'window.dat' u (1 - $4) nooutput name "LOST"
+set yrange [0:(LOST_max > 0.05 ? LOST_max : 0.05) * 1.4]
 set y2range [0:SAVED_max * 1.4]
 set key top left Left reverse
 plot 'window.dat' u 1:5 w lp pt 5 lw 2 lc rgb 0x1f77b4 t "windows rolled back", \

@@ -505,8 +505,9 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
 }
 
 /* A fingerprint of the rank: its owned particles (number, record, event) and the
- * window's events, these in any order (events at one time may run in either order: the
- * heap is rebuilt by a rollback, and ties then pop otherwise). O(N + window). */
+ * window's events, these in any order (events at one time may run in either order: a
+ * rollback puts particles back into the heap, and ties may then pop otherwise).
+ * O(N + window). */
 static uint64_t fingerprint(const lz_pedmd *r)
 {
 	uint64_t h = 14695981039346656037u;

@@ -50,8 +50,9 @@
  * rank that finds an error tells the others (HALT), and they stop the lost window.
  *
  * State saving. A window saves the first version of every particle record it changes
- * (its record, event, role and events) and the rank's counters; a rollback writes
- * them back and rebuilds the cells and the heap. Reverse computation would undo each
+ * (its record, event, role and events), the rank's counters and the old read stamps;
+ * a rollback writes them back, each particle into its cell list and the heap, in
+ * O(log N) a particle: it costs what the window touched. Reverse computation would undo each
  * event instead, but a bounce is not exactly invertible in floating point.
  *
  * Load balancing. Every rank counts the committed events of each cell (load). New
