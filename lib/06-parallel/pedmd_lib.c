@@ -106,10 +106,8 @@ static int check_params(const lz_pedmd_params *p)
 		                p->window);
 	if (!(p->rebase > 0) || !isfinite(p->rebase))
 		return lz_error(LZ_EINVAL, "rebase = %g: a positive, finite time", p->rebase);
-	if (p->balance != 0)
-		return lz_error(LZ_EINVAL, "balance = %d: the cuts do not move during a run yet, so "
-		                "0; balance them from a pilot run's load (lz_pedmd_sim_alloc_cut)",
-		                p->balance);
+	if (p->balance < 0)
+		return lz_error(LZ_EINVAL, "balance = %d windows: 0 (never) or more", p->balance);
 	if (!(p->threshold >= 0 && p->threshold < 1))
 		return lz_error(LZ_EINVAL, "threshold = %g: in [0, 1)", p->threshold);
 	if (p->recheck != 0 && p->recheck != 1)
@@ -179,6 +177,36 @@ static void mark_near(lz_pedmd *r)
 	}
 }
 
+/* The rank's share of system s under its domains r->d: classes, roles, own and ghost
+ * events from s's heap keys and events, cells in s's list order, the heap, the read
+ * stamps cleared, the clock at s's. r->e already holds s's records (copy_system). */
+static void take_system(lz_pedmd *r, const lz_edmd *s)
+{
+	size_t n = s->n, nc = s->ncells;
+	lz_pedmd_classify(r->e, r->d, r->rank, r->cls);
+	mark_near(r);
+	for (size_t c = 0; c < nc; c++)
+		r->read[c] = -INFINITY;
+	lz_edmd *e = r->e;
+	for (uint32_t i = 0; i < n; i++) {
+		uint8_t k = r->cls[e->p[i].cell];
+		lz_pedmd_event ev = {lz_heap_key(s->heap, i), s->ev[i]};
+		r->role[i] = k == LZ_PEDMD_HALO ? LZ_PEDMD_GHOST
+		             : k == LZ_PEDMD_FAR ? LZ_PEDMD_ABSENT : LZ_PEDMD_OWNED;
+		r->own[i] = r->role[i] == LZ_PEDMD_OWNED ? ev : (lz_pedmd_event){-INFINITY, {LZ_EDMD_NONE, 0}};
+		r->ghost[i] = ev;
+		r->heard[i] = -INFINITY;
+	}
+	fill_cells(r, s);
+	for (uint32_t i = 0; i < n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED)
+			lz_heap_push(e->heap, i, r->own[i].t);
+	r->clock = e->now;
+	for (uint32_t i = 0; i < n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED && r->cls[e->p[i].cell] == LZ_PEDMD_BORDER)
+			lz_pedmd_retarget(r, i);
+}
+
 lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
                          const lz_pedmd_params *p)
 {
@@ -213,33 +241,62 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 		lz_pedmd_free(r);
 		return lz_error(LZ_ENOMEM, "no memory for a rank of %zu particles", n), NULL;
 	}
-	lz_pedmd_classify(r->e, d, r->rank, r->cls);
-	mark_near(r);
-	for (size_t c = 0; c < nc; c++)
-		r->read[c] = -INFINITY;
-	lz_edmd *e = r->e;
-	for (uint32_t i = 0; i < n; i++) {
-		uint8_t k = r->cls[e->p[i].cell];
-		lz_pedmd_event ev = {lz_heap_key(s->heap, i), s->ev[i]};
-		r->role[i] = k == LZ_PEDMD_HALO ? LZ_PEDMD_GHOST
-		             : k == LZ_PEDMD_FAR ? LZ_PEDMD_ABSENT : LZ_PEDMD_OWNED;
-		r->own[i] = r->role[i] == LZ_PEDMD_OWNED ? ev : (lz_pedmd_event){-INFINITY, {LZ_EDMD_NONE, 0}};
-		r->ghost[i] = ev;
-		r->heard[i] = -INFINITY;
-	}
-	fill_cells(r, s);
-	for (uint32_t i = 0; i < n; i++)
-		if (r->role[i] == LZ_PEDMD_OWNED)
-			lz_heap_push(e->heap, i, r->own[i].t);
-	r->clock = e->now;
-	for (uint32_t i = 0; i < n; i++)
-		if (r->role[i] == LZ_PEDMD_OWNED && r->cls[e->p[i].cell] == LZ_PEDMD_BORDER)
-			lz_pedmd_retarget(r, i);
-	r->T = e->t_base + e->now;
+	take_system(r, s);
+	r->T = r->e->t_base + r->e->now;
 	r->width = p->window;
 	r->forced_end = NAN;
 	r->t_error = INFINITY;
 	return r;
+}
+
+/* Rank r takes its share of s under the (new) cuts of r->d. */
+static int recut_one(lz_pedmd *r, const lz_edmd *s)
+{
+	lz_edmd *e = copy_system(s);
+	if (!e)
+		return LZ_ENOMEM;
+	lz_edmd_free(r->e);
+	r->e = e;
+	take_system(r, s);
+	r->counts.balances++;
+	return LZ_OK;
+}
+
+int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut)
+{
+	for (int k = 0; k < P; k++)
+		if (ranks[k]->phase != LZ_PEDMD_BEGIN || ranks[k]->nwait > 0 ||
+		    ranks[k]->T != ranks[0]->T)
+			return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, every rank between "
+			                "windows at one time with no message waiting", k);
+	lz_edmd *s = copy_system(ranks[0]->e);
+	if (!s)
+		return LZ_ENOMEM;
+	double *key = malloc(s->n * sizeof *key);
+	if (!key) {
+		lz_edmd_free(s);
+		return lz_error(LZ_ENOMEM, "no memory for %zu keys", s->n);
+	}
+	for (int k = 0; k < P; k++)  /* the serial picture: each particle as its owner has it */
+		for (uint32_t i = 0; i < s->n; i++)
+			if (ranks[k]->role[i] == LZ_PEDMD_OWNED) {
+				s->p[i] = ranks[k]->e->p[i];
+				s->ev[i] = ranks[k]->own[i].ev;
+				key[i] = ranks[k]->own[i].t;
+			}
+	lz_edmd_cell_clear(s);
+	lz_heap_clear(s->heap);
+	for (uint32_t i = (uint32_t)s->n; i-- > 0;)
+		lz_edmd_cell_insert(s, i, s->p[i].cell);
+	for (uint32_t i = 0; i < s->n; i++)
+		lz_heap_push(s->heap, i, key[i]);
+	free(key);
+	memcpy(d->cut, cut, (size_t)(P + 1) * sizeof *cut);
+	int st = LZ_OK;
+	for (int k = 0; k < P && st == LZ_OK; k++)
+		st = recut_one(ranks[k], s);
+	lz_edmd_free(s);
+	return st;
 }
 
 void lz_pedmd_free(lz_pedmd *r)

@@ -65,6 +65,19 @@ LZ_TEST(pedmd_scene_equals_the_serial_run)
 }
 END_TEST
 
+LZ_TEST(pedmd_scene_moves_its_cuts_and_stays_exact)
+{
+	/* a falling sediment with balance = dynamic: the cuts move, the run is the serial run */
+	const char *dir;
+	lzt_json *j = run_pedmd("dim=2;n=1200;packing=0.2;walls=box;gravity=1;equilibrate=50;"
+	                        "time=1.5;ranks=4;balance=dynamic;balance_every=4;seed=3", &dir);
+	ck_assert_msg(is_true(j, "identical_to_serial") && lzt_num(j, "cut_moves") > 0,
+	              "balance = dynamic: %g moves of the cuts, identical to the serial run: %d",
+	              lzt_num(j, "cut_moves"), is_true(j, "identical_to_serial"));
+	free(j);
+}
+END_TEST
+
 LZ_TEST(pedmd_scene_refuses_what_cannot_run)
 {
 	struct {

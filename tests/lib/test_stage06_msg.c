@@ -243,7 +243,7 @@ LZ_TEST(pedmd_refuses_bad_parameters_and_audits)
 	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16, 0};
 	lz_pedmd_params bad[] = {
 		{0, 0.5, 0, 0.1, 1, 16, 0}, {INFINITY, 0.5, 0, 0.1, 1, 16, 0}, {0.05, -1, 0, 0.1, 1, 16, 0},
-		{0.05, 0.5, 3, 0.1, 1, 16, 0}, {0.05, 0.5, 0, 1, 1, 16, 0}, {0.05, 0.5, 0, 0.1, 1, 0, 0},
+		{0.05, 0.5, -1, 0.1, 1, 16, 0}, {0.05, 0.5, 0, 1, 1, 16, 0}, {0.05, 0.5, 0, 0.1, 1, 0, 0},
 	};
 	const char *says[] = {"window", "window", "rebase", "balance", "threshold", "work"};
 	for (int k = 0; k < 6; k++) {
@@ -358,6 +358,39 @@ LZ_TEST(pedmd_cuts_from_a_pilot_run_spread_the_work)
 	lz_pedmd_sim_free(pilot);
 	lz_edmd_free(s);
 	lz_edmd_free(t);
+}
+END_TEST
+
+LZ_TEST(pedmd_cuts_move_during_a_run)
+{
+	/* a sediment whose load moves as it falls and spreads: the cuts move every 4
+	 * windows when that pays, and the run stays the serial run, bit for bit */
+	lz_edmd *s = sediment(800), *ref = sediment(800), *pic = sediment(800);
+	lz_stub_params sp = {4, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
+	lz_pedmd_params pp = {0.05, 0.5, 4, 0.05, 0, 16, 0};
+	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
+	ck_assert_ptr_nonnull(x);
+	x->audit = 1;
+	uint32_t cut0[LZ_PEDMD_RANKS_MAX + 1];
+	memcpy(cut0, x->d->cut, sizeof cut0);
+	ck_assert_msg(lz_pedmd_sim_run(x, 3.0) == LZ_OK, "the run: %s", lz_error_message());
+	ck_assert_int_eq(lz_pedmd_serial(ref, 3.0, 0.5), LZ_OK);
+	lz_pedmd_counts c = lz_pedmd_sim_counts(x);
+	ck_assert_msg(c.balances > 0 && memcmp(cut0, x->d->cut, 5 * sizeof *cut0) != 0, "the cuts "
+	              "never moved (%llu balances)", (unsigned long long)c.balances);
+	ck_assert_msg(c.committed == ref->events && c.collisions == ref->collisions,
+	              "moving cuts changed the physics: %llu committed events, %llu serially",
+	              (unsigned long long)c.committed, (unsigned long long)ref->events);
+	lz_pedmd_sim_gather(x, pic);
+	for (uint32_t i = 0; i < s->n; i++)
+		LZ_REQUIRE(memcmp(&pic->p[i], &ref->p[i], sizeof ref->p[i]) == 0, "particle %u's record "
+		      "differs from the serial run's after %llu moves of the cuts", i,
+		      (unsigned long long)c.balances);
+	ck_assert_msg(x->audits > 2, "only %llu cuts audited", (unsigned long long)x->audits);
+	lz_pedmd_sim_free(x);
+	lz_edmd_free(s);
+	lz_edmd_free(ref);
+	lz_edmd_free(pic);
 }
 END_TEST
 

@@ -6,8 +6,8 @@
 # BUILD/bin/lz-mpi runs datasets/scenes/06-mpi-check.scene (check = yes) on P = 1, 2, 3
 # and 4 processes: each must exit 0 and commit the serial run's final state bit for bit
 # ("identical to the serial run: yes"). Bad input — a key the scene cannot have, a
-# scene that is not there, a `ranks` other than the processes — must exit 2 on every
-# process with its message, and never hang (each run under `timeout`). Prints
+# scene that is not there, a `ranks` other than the processes, balance = dynamic —
+# must exit 2 on every process with its message, and never hang (each run under `timeout`). Prints
 # `mpi: N passed, M failed` and exits non-zero on any failure. Without mpicc or mpirun
 # (or an lz-mpi built) the checks are skipped with a note: `mpi: 0 passed, 0 failed`.
 # shellcheck source=lib/tools/common.sh
@@ -93,6 +93,8 @@ expect "a missing scene exits 2 with its message" 2 "^lz-mpi: cannot open scene"
 	3 "$tmp/none.scene"
 expect "ranks = 3 on 2 processes exits 2" 2 "^lz-mpi: .*ranks = 3, but lz-mpi runs on 2 processes" \
 	2 "$SCENE" ranks=3
+expect "balance = dynamic exits 2 (not under MPI)" 2 "^lz-mpi: .*balance = pilot or dynamic is not done" \
+	2 "$SCENE" balance=dynamic
 
 echo "mpi: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

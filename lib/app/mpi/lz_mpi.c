@@ -10,7 +10,7 @@
  * particles into its copy of the system, sums the counters, prints a short report
  * (stdout) and, with check = yes, runs the serial reference and compares bit for bit.
  * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here;
- * balance = pilot is refused (not done under MPI yet).
+ * balance = pilot or dynamic is refused (not done under MPI yet).
  *
  * Exit status, the same on every process: 0 success; 1 the run failed or differs from
  * the serial run; 2 bad input (usage, scene file, key, value, ranks). A failure while
@@ -149,8 +149,8 @@ static int make(lz_scene *s, int rank, int size, lz_pedmd_scene *p)
 		                     "run mpirun -np %lld", lz_scene_int(s, "ranks"), size, size,
 		                     lz_scene_int(s, "ranks"));
 	if (lz_scene_enum(s, "balance") != 0)
-		return lz_scene_fail(s, "balance", "balance = pilot is not done under lz-mpi yet "
-		                     "(lz run does it over the stub); use balance = none");
+		return lz_scene_fail(s, "balance", "balance = pilot or dynamic is not done under "
+		                     "lz-mpi yet (lz run does both over the stub); use balance = none");
 	/* Only rank 0 runs the serial reference: the others need not build it. */
 	int st = LZ_OK;
 	if (rank != 0 && lz_scene_bool(s, "check") &&

@@ -58,8 +58,8 @@
  * Load balancing. Every rank counts the committed events of each cell (load). New
  * cuts along the curve give every rank the same share of the load (lz_pedmd_rebalance);
  * a run started with those cuts is balanced for a system whose load stays where it
- * was. (Moving the cuts during a run, with the particles changing owners at a cut, is
- * the next step and not done yet: params.balance must be 0.)
+ * was; a run in one process (lz_pedmd_sim_run, params.balance) also moves them at a
+ * cut every so many windows, the particles changing owners there (lz_pedmd_recut).
  *
  * The clock is re-based (lz_edmd_rebase) at absolute multiples of `rebase` only, the
  * same times as the serial reference (rebase_auto = 0), so that both round alike:
@@ -167,9 +167,10 @@ typedef struct {
 	double window;      /* the first window's length (> 0); it adapts: x1.125 after a
 	                       commit, /2 after a rollback, within [window/64, 64 window] */
 	double rebase;      /* re-base the clock at absolute multiples of this (> 0) */
-	int balance;        /* rebalance every this many windows: only 0 (never) for now;
-	                       the cuts can be balanced from a pilot run's load instead
-	                       (lz_pedmd_sim_load, lz_pedmd_rebalance, lz_pedmd_sim_alloc_cut) */
+	int balance;        /* lz_pedmd_sim_run: new cuts from the load since the last ones
+	                       every this many windows (0: never), moved when they pay
+	                       (threshold; lz_pedmd_recut). The ranks themselves never move
+	                       cuts: lz-mpi runs keep theirs */
 	double threshold;   /* ... when the largest load improves by this fraction */
 	int log;            /* 1: keep the committed events (lz_pedmd_log) */
 	int work;           /* events per turn of the work function (> 0) */
@@ -402,6 +403,14 @@ lz_pedmd_counts lz_pedmd_counters(const lz_pedmd *r);
 const lz_pedmd_record *lz_pedmd_log(const lz_pedmd *r, size_t *n);
 int lz_pedmd_role(const lz_pedmd *r, uint32_t i);
 
+/* Move the cuts at a cut: every rank between windows at the same time T, nothing
+ * waiting. The owned particles of all ranks (ranks[], all P in one process) make the
+ * serial picture — records, own events and their times —, d->cut becomes cut[0 .. P],
+ * and every rank takes its share of the picture as lz_pedmd_alloc would, so that the
+ * run goes on bit for bit (balances + 1 on each). LZ_OK, LZ_EINVAL when not at a cut,
+ * or LZ_ENOMEM. O(P (N + cells)). */
+int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut);
+
 /* The invariants of rank r at a cut: its owned particles lie in owned cells, each in
  * the heap once with its event, its ghosts in HALO cells; ghost records equal their
  * owners' (ranks[], all P of them, in one process: the stub). LZ_OK or LZ_EDOM naming
@@ -423,6 +432,8 @@ typedef struct {
 	uint64_t audits;     /* cuts audited so far */
 	double t_stop;       /* of the current lz_pedmd_sim_run */
 	double audited_T;    /* the window start audited last */
+	uint64_t next_balance;  /* params.balance > 0: the windows begun at the next try */
+	double *load0;       /* the load of every cell at the last try (NULL: none yet) */
 } lz_pedmd_sim;
 
 /* The ranks of a run of system s (lz_edmd_start done, rebase_auto = 0) along curve
