@@ -180,6 +180,28 @@ static inline lz_edmd *gas_blank(const gas *g)
 	return lz_edmd_alloc(&p);
 }
 
+/* The start of a measured run of g for `time` units, its serial reference run to the
+ * end (*t_stop, absolute) and a blank for the gathered picture. LZ_OK, or an LZ_E code
+ * with the systems made so far freed and NULL. */
+static inline int gas_runs(const gas *g, double time, lz_edmd **start, lz_edmd **ref,
+                           lz_edmd **pic, double *t_stop)
+{
+	*start = gas_make(g);
+	*ref = gas_make(g);
+	*pic = gas_blank(g);
+	int st = *start && *ref && *pic ? LZ_OK : LZ_ENOMEM;
+	*t_stop = *start ? lz_edmd_time(*start) + time : 0;
+	if (st == LZ_OK)
+		st = serial_run(*ref, *t_stop, g->rebase, NULL);
+	if (st != LZ_OK) {
+		lz_edmd_free(*start);
+		lz_edmd_free(*ref);
+		lz_edmd_free(*pic);
+		*start = *ref = *pic = NULL;
+	}
+	return st;
+}
+
 /* ---- one parallel run ---- */
 
 typedef struct {

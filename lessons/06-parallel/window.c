@@ -95,11 +95,9 @@ int main(int argc, char **argv)
 		return 2;
 	const sizes *sz = L.quick ? &quick : &full;
 	gas g = {2, sz->n, 0.3, LZ_EDMD_WALLS_NONE, 0, 1, SEED, 1, 1};
-	lz_edmd *start = gas_make(&g), *ref = gas_make(&g), *pic = gas_blank(&g);
-	if (!start || !ref || !pic)
-		return lz_lesson_error(&L);
-	double t_stop = lz_edmd_time(start) + sz->time;
-	if (serial_run(ref, t_stop, g.rebase, NULL) != LZ_OK)
+	lz_edmd *start, *ref, *pic;
+	double t_stop;
+	if (gas_runs(&g, sz->time, &start, &ref, &pic, &t_stop) != LZ_OK)
 		return lz_lesson_error(&L);
 	double R = (double)ref->events / sz->time;
 	printf("window: 2D, N = %zu, η = 0.3, P = %d Morton, %s; %llu serial events in %g time "
