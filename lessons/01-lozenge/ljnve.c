@@ -271,8 +271,9 @@ static void report(lz_lesson *L, size_t n, nve_stats st[NPREC][NDT], double rate
 	       lz_lesson_check(L, ok_order));
 	printf("    drift at dt = %g (double) %.2e eps/tau per particle, limit 1e-4  %s\n",
 	       dts[DT_DRIFT], ref->drift, lz_lesson_check(L, ok_drift));
-	printf("    <T> = %.3f, <U>/N = %.3f (reference -4.67 +- 0.05 at T = 1: "
-	       "rc = 2.5, shifted)  %s\n", ref->temp, ref->upot, lz_lesson_check(L, ok_u));
+	printf("    <T> = %.3f, <U>/N = %.3f (reference -4.67 +- 0.05 at T = 1: rc = 2.5, shifted; "
+	       "datasets/reference/lennard-jones.csv)  %s\n", ref->temp, ref->upot,
+	       lz_lesson_check(L, ok_u));
 }
 
 static void json_size(lz_json *j, size_t n, nve_stats st[NPREC][NDT], double rate)
