@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_fit.h>
+
 #include "lz/edmd.h"
 #include "lz/error.h"
 #include "lz/msg.h"
@@ -200,6 +202,24 @@ static inline int gas_runs(const gas *g, double time, lz_edmd **start, lz_edmd *
 		*start = *ref = *pic = NULL;
 	}
 	return st;
+}
+
+/* ---- scaling ---- */
+
+/* S ∝ P^a fitted on the points P[1 .. np-1] (P >= 2; np <= 16) on log-log by least
+ * squares (gsl_fit_linear): a and its standard error from the scatter about the line
+ * (NAN with fewer than three points). */
+static inline void fit_power(const int *P, const double *S, int np, double *a, double *a_err)
+{
+	double x[16], y[16], c0, c1, cov00, cov01, cov11, sumsq;
+	int n = 0;
+	for (int k = 1; k < np && n < 16; k++) {
+		x[n] = log(P[k]);
+		y[n++] = log(S[k]);
+	}
+	gsl_fit_linear(x, 1, y, 1, (size_t)n, &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
+	*a = c1;
+	*a_err = n > 2 ? sqrt(cov11 * sumsq / (n - 2)) : NAN;
 }
 
 /* ---- one parallel run ---- */

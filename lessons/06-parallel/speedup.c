@@ -35,8 +35,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_fit.h>
-
 #include "lz/edmd.h"
 #include "lz/error.h"
 #include "lz/lesson.h"
@@ -73,20 +71,6 @@ typedef struct {
 	size_t n;
 	double eta;
 } dim_result;
-
-/* S ∝ P^a on P >= 2: a and its standard error. */
-static void fit_exponent(const double *S, int np, double *a, double *a_err)
-{
-	double x[PMAX_N], y[PMAX_N], c0, c1, cov00, cov01, cov11, sumsq;
-	int n = 0;
-	for (int k = 1; k < np; k++) {
-		x[n] = log(ranks_of[k]);
-		y[n++] = log(S[k]);
-	}
-	gsl_fit_linear(x, 1, y, 1, (size_t)n, &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
-	*a = c1;
-	*a_err = n > 2 ? sqrt(cov11 * sumsq / (n - 2)) : NAN;  /* scatter about the line */
-}
 
 static int one_dim(const gas *g, double time, int np, lz_data *d, dim_result *out)
 {
@@ -143,7 +127,7 @@ static int one_dim(const gas *g, double time, int np, lz_data *d, dim_result *ou
 			lz_data_row(d, row);
 		}
 		if (st == LZ_OK) {
-			fit_exponent(out->S[s], np, &out->a[s], &out->a_err[s]);
+			fit_power(ranks_of, out->S[s], np, &out->a[s], &out->a_err[s]);
 			printf("      S ∝ P^%.2f ± %.2f (P = 2 .. %d)\n", out->a[s], out->a_err[s],
 			       ranks_of[np - 1]);
 		}

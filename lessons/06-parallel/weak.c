@@ -26,8 +26,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include <gsl/gsl_fit.h>
-
 #include "lz/edmd.h"
 #include "lz/error.h"
 #include "lz/lesson.h"
@@ -57,42 +55,18 @@ typedef struct {
 	int exact_runs, runs;
 } dim_result;
 
-/* S_w ∝ P^a on P >= 2: a and its standard error (scatter about the line). */
-static void fit_exponent(const double *S, int np, double *a, double *a_err)
-{
-	double x[PMAX_N], y[PMAX_N], c0, c1, cov00, cov01, cov11, sumsq;
-	int n = 0;
-	for (int k = 1; k < np; k++) {
-		x[n] = log(ranks_of[k]);
-		y[n++] = log(S[k]);
-	}
-	gsl_fit_linear(x, 1, y, 1, (size_t)n, &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
-	*a = c1;
-	*a_err = n > 2 ? sqrt(cov11 * sumsq / (n - 2)) : NAN;
-}
-
-/* The ghosts rank `rank` holds: the particles in its HALO cells. */
-static size_t ghosts_of(const lz_edmd *e, const lz_pedmd_domains *d, int rank, uint8_t *cls)
-{
-	lz_pedmd_classify(e, d, rank, cls);
-	size_t g = 0;
-	for (size_t i = 0; i < e->n; i++)
-		g += cls[e->p[i].cell] == LZ_PEDMD_HALO;
-	return g;
-}
-
-/* The most particles (own + ghosts) any rank of P holds along the Morton curve. */
+/* The most particles any rank of P holds along the Morton curve: its own and its
+ * ghosts, every particle in a cell that is not FAR to it. 0 without memory. */
 static size_t most_held(const lz_edmd *e, int P)
 {
 	lz_pedmd_domains *d = lz_pedmd_domains_alloc(e, P, LZ_PEDMD_MORTON);
 	uint8_t *cls = d ? malloc(e->ncells) : NULL;
 	size_t most = 0;
 	for (int r = 0; cls && r < P; r++) {
-		size_t own = 0;
+		size_t held = 0;
 		lz_pedmd_classify(e, d, r, cls);
 		for (size_t i = 0; i < e->n; i++)
-			own += cls[e->p[i].cell] == LZ_PEDMD_BORDER || cls[e->p[i].cell] == LZ_PEDMD_INTERIOR;
-		size_t held = own + ghosts_of(e, d, r, cls);
+			held += cls[e->p[i].cell] != LZ_PEDMD_FAR;
 		most = held > most ? held : most;
 	}
 	free(cls);
@@ -117,11 +91,13 @@ static int one_point(const gas *g, double time, int P, double *T1, lz_data *d, d
 		               {NAN, g->rebase, 0, 0.1, 0, 1, 0}, NULL, 0};
 		st = best_window(start, q, R, t_stop, ref, pic, &r, &c);
 	}
+	double held = st == LZ_OK ? (double)most_held(start, P) : 0;
+	if (st == LZ_OK && held == 0)
+		st = lz_error(LZ_ENOMEM, "no memory to count the particles a rank holds");
 	if (st == LZ_OK) {
 		if (P == 1)
 			*T1 = r.vtime;
 		double S = P * *T1 / r.vtime, eff = (double)r.c.committed / (double)r.c.processed;
-		double held = (double)most_held(start, P);
 		double lean = 64 * held + (double)r.c.saved_bytes, stub = 64.0 * (double)g->n;
 		out->S[k] = S;
 		out->runs++;
@@ -155,7 +131,7 @@ static int one_dim(int dim, size_t n, double time, int np, lz_data *d, dim_resul
 		st = one_point(&g, time, ranks_of[k], &T1, d, out, k);
 	}
 	if (st == LZ_OK) {
-		fit_exponent(out->S, np, &out->a, &out->a_err);
+		fit_power(ranks_of, out->S, np, &out->a, &out->a_err);
 		printf("      S_w ∝ P^%.2f ± %.2f (P = 2 .. %d)\n", out->a, out->a_err, ranks_of[np - 1]);
 	}
 	return st;
