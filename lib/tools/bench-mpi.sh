@@ -10,6 +10,13 @@
 # (the machine is shared: a ratio of one round's runs is fairer than a ratio of
 # medians), and writes BUILD/bench/06-mpi.json. Without mpirun or lz-mpi it says so and
 # exits 0.
+#
+# Then the model checked against the measurement: the stub's virtual-time policy run
+# on 2 ranks of the same system (lz run ... schedule = virtual), its costs the measured
+# ones — cost_event the time of one event on one rank (the P = 1 median), cost_message
+# and latency the medians of what the P = 2 runs' ping-pong found (lz-mpi prints them)
+# — and its modelled P = 2 / serial = committed events x the serial engine's time per
+# event / the virtual time.
 # shellcheck source=lib/tools/common.sh
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$ROOT"
@@ -32,12 +39,26 @@ if mpirun --version 2>&1 | grep -q "Open MPI"; then
 fi
 cores=$(nproc 2>/dev/null || echo 1)
 
-# One lz-mpi run on $1 processes with the overrides that follow: committed events/s.
+# One lz-mpi run on $1 processes with the overrides that follow: committed events/s,
+# and on 2 or more processes the measured message cost and latency (seconds).
 mpi_rate() {
 	local np=$1
 	shift
 	"${MPIRUN[@]}" -np "$np" "$lzmpi" "$scene" check=no "$@" 2>/dev/null |
-		awk '/committed events\/s/ {print $3}'
+		awk '/committed events\/s/ {r = $3} /^message cost/ {c = $3} /^message latency/ {l = $3}
+		     END {print r, c, l}'
+}
+
+# The modelled P = 2 / serial of the virtual-time policy: $1 the serial engine's events
+# per second, $2 one rank's, $3 the message cost, $4 the latency, then the overrides.
+model_ratio() {
+	local serial=$1 rank=$2 cost=$3 lat=$4
+	shift 4
+	"$lz" run "$scene" ranks=2 schedule=virtual check=no write_config=no \
+		cost_event="$(awk -v r="$rank" 'BEGIN {printf "%.6g", 1 / r}')" cost_message="$cost" \
+		latency="$lat" "$@" --quiet --out "$out/runs/mpi-model" >/dev/null 2>&1 &&
+		awk -F'[:,]' -v s="$serial" '/"committed_events"/ {e = $2} /"virtual_s"/ {v = $2}
+			END {if (v > 0 && s > 0) printf "%.4g\n", e / s / v}' "$out/runs/mpi-model/summary.json"
 }
 
 # The serial engine's events per CPU second on the same system.
@@ -54,25 +75,36 @@ printf '{\n  "scene": "%s",\n  "cpu": "%s",\n  "cores": %s,\n  "repeats": %s,\n 
 	"$scene" "$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | sed 's/.*: *//')" "$cores" \
 	"$repeats" >"$json"
 sep=""
-printf '%-9s %14s %14s %14s %18s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" "P=2 / serial"
+printf '%-9s %14s %14s %14s %14s %12s %12s %14s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" \
+	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser"
 for point in "100000 6" "1000000 0.5"; do
 	read -r n t <<<"$point"
-	s=() p1=() p2=() ratio=()
+	s=() p1=() p2=() ratio=() cost=() lat=()
 	for ((k = 0; k < repeats; k++)); do
 		s+=("$(serial_rate n="$n" time="$t")")
-		p1+=("$(mpi_rate 1 n="$n" time="$t")")
+		read -r r _ <<<"$(mpi_rate 1 n="$n" time="$t")"
+		p1+=("$r")
 		if [ "$cores" -ge 2 ]; then
-			p2+=("$(mpi_rate 2 n="$n" time="$t")")
-			ratio+=("$(awk -v a="${p2[k]}" -v b="${s[k]}" 'BEGIN {if (b > 0 && a > 0) print a / b}')")
+			read -r r c l <<<"$(mpi_rate 2 n="$n" time="$t")"
+			p2+=("$r") cost+=("$c") lat+=("$l")
+			ratio+=("$(awk -v a="$r" -v b="${s[k]}" 'BEGIN {if (b > 0 && a > 0) print a / b}')")
 		fi
 	done
 	ms=$(printf '%s\n' "${s[@]}" | median)
 	m1=$(printf '%s\n' "${p1[@]}" | median)
-	m2=$( ((${#p2[@]})) && printf '%s\n' "${p2[@]}" | median || echo "")
-	mr=$( ((${#ratio[@]})) && printf '%s\n' "${ratio[@]}" | median || echo "")
-	printf '%-9s %14s %14s %14s %18s\n' "$n" "$ms" "$m1" "${m2:-skipped}" "${mr:-skipped}"
-	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s}' \
-		"$sep" "$n" "$t" "${ms:-null}" "${m1:-null}" "${m2:-null}" "${mr:-null}" >>"$json"
+	m2="" mr="" mc="" ml="" mm=""
+	if ((${#p2[@]})); then
+		m2=$(printf '%s\n' "${p2[@]}" | median)
+		mr=$(printf '%s\n' "${ratio[@]}" | median)
+		mc=$(printf '%s\n' "${cost[@]}" | median)
+		ml=$(printf '%s\n' "${lat[@]}" | median)
+		mm=$(model_ratio "$ms" "$m1" "$mc" "$ml" n="$n" time="$t")
+	fi
+	printf '%-9s %14s %14s %14s %14s %12s %12s %14s\n' "$n" "$ms" "$m1" "${m2:-skipped}" \
+		"${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}"
+	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s}' \
+		"$sep" "$n" "$t" "${ms:-null}" "${m1:-null}" "${m2:-null}" "${mr:-null}" "${mc:-null}" \
+		"${ml:-null}" "${mm:-null}" >>"$json"
 	sep=","
 done
 printf '\n  ]\n}\n' >>"$json"

@@ -9,6 +9,8 @@
  * over the MPI back-end (lz/msg_mpi.h) until t_stop. Then rank 0 gathers the owned
  * particles into its copy of the system, sums the counters, prints a short report
  * (stdout) and, with check = yes, runs the serial reference and compares bit for bit.
+ * Before the run, ranks 0 and 1 measure what a message costs and how long it travels
+ * (probe): the report prints both, for the virtual-time model of `make bench`.
  * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here;
  * balance = pilot or dynamic is refused (not done under MPI yet).
  *
@@ -18,6 +20,7 @@
  * the first failing rank says why, every process exits); one inside the run, where the
  * others would wait for it forever, prints its message and calls MPI_Abort.
  */
+#include <math.h>
 #include <sched.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -232,8 +235,61 @@ static int gather(const lz_pedmd *r, int rank, int size, lz_edmd *out)
 	return st;
 }
 
+/* The two costs of a message that the stub's virtual-time policy models (lz/msg.h),
+ * measured on this back-end by a ping-pong of ranks 0 and 1 before the run, so that
+ * `make bench` can feed the model with them: cost, rank 0's time inside a send and
+ * inside the poll that returns the answer (the mean of the two); latency, what is left
+ * of each leg of a round trip (a leg is a cost at each end and a latency). Messages of
+ * the engine's size, one in flight at a time (as the engine's border news: a burst
+ * would measure the back-end's queue, not a message); all are received, so the cut's
+ * counters stay balanced. The other ranks take no part. */
+typedef struct {
+	double cost, latency;
+} probe_result;
+enum { PROBE_PINGS = 4000 };
+
+/* Wait for one message; the time of the poll that returned it in *busy. */
+static int probe_recv(lz_msg *msg, lz_pedmd_message *m, double *busy)
+{
+	int from, got;
+	size_t n;
+	double t;
+	do {
+		t = lz_msg_clock(msg);
+		got = lz_msg_poll(msg, &from, m, sizeof *m, &n);
+	} while (got == 0);
+	*busy = lz_msg_clock(msg) - t;
+	return got < 0 ? got : LZ_OK;
+}
+
+static probe_result probe(lz_msg *msg, int rank, int size)
+{
+	probe_result res = {0, 0};
+	lz_pedmd_message m = {0};
+	int st = LZ_OK, other = 1 - rank;
+	if (size < 2 || rank > 1)
+		return res;
+	double busy = 0, q, t0 = lz_msg_clock(msg);
+	for (int k = 0; k < PROBE_PINGS && st == LZ_OK; k++) {
+		double ts = lz_msg_clock(msg);
+		if (rank == 0 && (st = lz_msg_send(msg, other, &m, sizeof m)) == LZ_OK) {
+			busy += lz_msg_clock(msg) - ts;
+			st = probe_recv(msg, &m, &q);
+			busy += q;
+		} else if (rank == 1 && (st = probe_recv(msg, &m, &q)) == LZ_OK) {
+			st = lz_msg_send(msg, other, &m, sizeof m);
+		}
+	}
+	double round = (lz_msg_clock(msg) - t0) / PROBE_PINGS;
+	if (st != LZ_OK)
+		abort_run(rank, st);
+	res.cost = busy / (2.0 * PROBE_PINGS);
+	res.latency = fmax(round / 2 - 2 * res.cost, 0);
+	return res;
+}
+
 static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
-                   const lz_pedmd_counts *c, double wall)
+                   const lz_pedmd_counts *c, double wall, probe_result cost)
 {
 	const lz_edmd *e = p->system;
 	printf("lz-mpi: scene %s, %zu %s, %d ranks along the %s curve\n", lz_scene_name(s), e->n,
@@ -251,6 +307,9 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 	printf("conservative steps    %llu\n", (unsigned long long)c->conservative);
 	printf("parallel wall time    %.4f s\n", wall);
 	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
+	if (size > 1)
+		printf("message cost          %.3g s (send or receive; %d ping-pongs of ranks 0, 1)\n"
+		       "message latency       %.3g s\n", cost.cost, PROBE_PINGS, cost.latency);
 	fflush(stdout);
 }
 
@@ -307,6 +366,9 @@ int main(int argc, char **argv)
 	if (st != LZ_OK)
 		return quit(&x, st);
 
+	probe_result cost = probe(x.msg, rank, size);
+	MPI_Bcast(&cost, (int)sizeof cost, MPI_BYTE, 0, MPI_COMM_WORLD);
+
 	/* The parallel part. A waiting rank yields its core (mpirun --oversubscribe). */
 	MPI_Barrier(MPI_COMM_WORLD);
 	double t0 = MPI_Wtime();
@@ -324,7 +386,7 @@ int main(int argc, char **argv)
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
 	st = gather(x.r, rank, size, x.p.system);
 	if (rank == 0 && st == LZ_OK)
-		report(x.s, &x.p, size, &c, slowest);
+		report(x.s, &x.p, size, &c, slowest, cost);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {
 		size_t k = lz_pedmd_scene_differ(x.p.system, x.p.reference);
 		if (k == 0)
