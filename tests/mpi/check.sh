@@ -86,6 +86,10 @@ for np in 1 2 3 4; do
 		"$np" "$SCENE"
 done
 
+# The ping-pong before the run found a message's cost (what make bench feeds the
+# virtual-time model): a positive time, not 0 or nothing.
+expect "P = 2 measures a message's cost" 0 "^message cost +[1-9][0-9.]*(e-?[0-9]+)? s" 2 "$SCENE"
+
 # Bad input: status 2 on every process, the message, no hang.
 expect "a bad key exits 2 with its message" 2 "^lz-mpi: .*unknown key 'no_such_key'" \
 	2 "$SCENE" no_such_key=1
