@@ -249,15 +249,101 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 	return r;
 }
 
-/* Rank r takes its share of s under the (new) cuts of r->d. */
-static int recut_one(lz_pedmd *r, const lz_edmd *s)
+/* ---- moving the cuts ---- */
+
+int lz_pedmd_balance_due(const lz_pedmd *r, double t_stop)
 {
-	lz_edmd *e = copy_system(s);
-	if (!e)
+	return r->p.balance > 0 && r->phase == LZ_PEDMD_BEGIN && r->T < t_stop &&
+	       isnan(r->forced_end) && !r->rerun && r->counts.windows >= r->next_balance;
+}
+
+int lz_pedmd_load_since(lz_pedmd *r, double *delta)
+{
+	size_t nc = r->e->ncells;
+	if (!r->load0 && !(r->load0 = calloc(nc, sizeof *r->load0)))
+		return lz_error(LZ_ENOMEM, "no memory for the load of %zu cells", nc);
+	for (size_t c = 0; c < nc; c++) {
+		delta[c] = r->load[c] - r->load0[c];
+		r->load0[c] = r->load[c];
+	}
+	r->next_balance = r->counts.windows + (uint64_t)r->p.balance;
+	return LZ_OK;
+}
+
+size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
+{
+	const lz_edmd *e = r->e;
+	size_t k = 0;
+	for (uint32_t i = 0; i < e->n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED) {
+			if (out)
+				out[k] = (lz_pedmd_message){e->now, i, LZ_PEDMD_MIGRATE, e->p[i], r->own[i]};
+			k++;
+		}
+	return k;
+}
+
+/* The serial picture that all[0 .. n-1] make, in *out (a copy of r's system): each
+ * particle as its owner has it (record, event, key), cells in the order of the
+ * numbers, the heap. LZ_OK; LZ_EINVAL when a particle is missing or comes twice;
+ * LZ_ENOMEM. O(N). */
+static int picture(const lz_pedmd *r, const lz_pedmd_message *all, size_t n, lz_edmd **out)
+{
+	size_t N = r->e->n;
+	*out = NULL;
+	if (n != N)
+		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
+		                r->rank, n, N);
+	lz_edmd *s = copy_system(r->e);
+	double *key = malloc(N * sizeof *key);
+	uint8_t *seen = calloc(N, 1);
+	int st = s && key && seen ? LZ_OK
+	                          : lz_error(LZ_ENOMEM, "no memory for a picture of %zu particles", N);
+	for (size_t k = 0; k < n && st == LZ_OK; k++) {
+		uint32_t i = all[k].id;
+		if (i >= N || seen[i]++)
+			st = lz_error(LZ_EINVAL, "rank %d: particle %u is twice in the picture, or not in "
+			              "the system", r->rank, i);
+		else {
+			s->p[i] = all[k].p;
+			s->ev[i] = all[k].event.ev;
+			key[i] = all[k].event.t;
+		}
+	}
+	if (st == LZ_OK) {
+		lz_edmd_cell_clear(s);
+		lz_heap_clear(s->heap);
+		for (uint32_t i = (uint32_t)N; i-- > 0;)
+			lz_edmd_cell_insert(s, i, s->p[i].cell);
+		for (uint32_t i = 0; i < N; i++)
+			lz_heap_push(s->heap, i, key[i]);
+	}
+	free(key);
+	free(seen);
+	if (st == LZ_OK)
+		*out = s;
+	else
+		lz_edmd_free(s);
+	return st;
+}
+
+int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
+{
+	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
+		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
+		                "message waiting", r->rank);
+	lz_edmd *s, *e;
+	int st = picture(r, all, n, &s);
+	if (st != LZ_OK)
+		return st;
+	if (!(e = copy_system(s))) {
+		lz_edmd_free(s);
 		return LZ_ENOMEM;
+	}
 	lz_edmd_free(r->e);
 	r->e = e;
 	take_system(r, s);
+	lz_edmd_free(s);
 	r->counts.balances++;
 	return LZ_OK;
 }
@@ -269,33 +355,20 @@ int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uin
 		    ranks[k]->T != ranks[0]->T)
 			return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, every rank between "
 			                "windows at one time with no message waiting", k);
-	lz_edmd *s = copy_system(ranks[0]->e);
-	if (!s)
-		return LZ_ENOMEM;
-	double *key = malloc(s->n * sizeof *key);
-	if (!key) {
-		lz_edmd_free(s);
-		return lz_error(LZ_ENOMEM, "no memory for %zu keys", s->n);
-	}
-	for (int k = 0; k < P; k++)  /* the serial picture: each particle as its owner has it */
-		for (uint32_t i = 0; i < s->n; i++)
-			if (ranks[k]->role[i] == LZ_PEDMD_OWNED) {
-				s->p[i] = ranks[k]->e->p[i];
-				s->ev[i] = ranks[k]->own[i].ev;
-				key[i] = ranks[k]->own[i].t;
-			}
-	lz_edmd_cell_clear(s);
-	lz_heap_clear(s->heap);
-	for (uint32_t i = (uint32_t)s->n; i-- > 0;)
-		lz_edmd_cell_insert(s, i, s->p[i].cell);
-	for (uint32_t i = 0; i < s->n; i++)
-		lz_heap_push(s->heap, i, key[i]);
-	free(key);
+	size_t N = ranks[0]->e->n, n = 0;
+	lz_pedmd_message *all = malloc(N * sizeof *all);
+	if (!all)
+		return lz_error(LZ_ENOMEM, "no memory for the picture of %zu particles", N);
+	for (int k = 0; k < P; k++)
+		if (n + lz_pedmd_owned(ranks[k], NULL) <= N)
+			n += lz_pedmd_owned(ranks[k], all + n);
+		else
+			n = N + 1;
 	memcpy(d->cut, cut, (size_t)(P + 1) * sizeof *cut);
 	int st = LZ_OK;
 	for (int k = 0; k < P && st == LZ_OK; k++)
-		st = recut_one(ranks[k], s);
-	lz_edmd_free(s);
+		st = lz_pedmd_take(ranks[k], all, n);
+	free(all);
 	return st;
 }
 
@@ -308,6 +381,7 @@ void lz_pedmd_free(lz_pedmd *r)
 	free(r->near);
 	free(r->read);
 	free(r->load);
+	free(r->load0);
 	free(r->role);
 	free(r->own);
 	free(r->ghost);

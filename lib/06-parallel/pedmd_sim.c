@@ -69,7 +69,6 @@ void lz_pedmd_sim_free(lz_pedmd_sim *x)
 	free(x->rank);
 	lz_pedmd_domains_free(x->d);
 	lz_stub_free(x->stub);
-	free(x->load0);
 	free(x);
 }
 
@@ -95,37 +94,24 @@ static uint64_t processed(const lz_pedmd_sim *x)
 	return n;
 }
 
-/* At a cut due for it: new cuts from the load since the last try, moved when they
- * pay (lz_pedmd_rebalance's threshold). */
+/* At a cut due for it: new cuts from the load since the last look, summed over the
+ * ranks, moved when they pay (lz_pedmd_rebalance's threshold). */
 static int balance(lz_pedmd_sim *x)
 {
 	size_t nc = x->d->ncells;
-	double *load = malloc(nc * sizeof *load);
-	if (!load || (!x->load0 && !(x->load0 = calloc(nc, sizeof *x->load0)))) {
-		free(load);
-		return lz_error(LZ_ENOMEM, "no memory for the load of %zu cells", nc);
-	}
-	lz_pedmd_sim_load(x, load);
-	for (size_t c = 0; c < nc; c++) {
-		double total = load[c];
-		load[c] -= x->load0[c];
-		x->load0[c] = total;
-	}
+	double *load = calloc(nc, sizeof *load), *mine = malloc(nc * sizeof *mine);
+	int st = load && mine ? LZ_OK
+	                      : lz_error(LZ_ENOMEM, "no memory for the load of %zu cells", nc);
+	for (int k = 0; k < x->P && st == LZ_OK; k++)
+		if ((st = lz_pedmd_load_since(x->rank[k], mine)) == LZ_OK)
+			for (size_t c = 0; c < nc; c++)
+				load[c] += mine[c];
 	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1];
-	const lz_pedmd *r0 = x->rank[0];
-	int st = lz_pedmd_rebalance(x->d, load, r0->p.threshold, cut) == 1
-	         ? lz_pedmd_recut(x->rank, x->P, x->d, cut) : LZ_OK;
+	if (st == LZ_OK && lz_pedmd_rebalance(x->d, load, x->rank[0]->p.threshold, cut) == 1)
+		st = lz_pedmd_recut(x->rank, x->P, x->d, cut);
 	free(load);
-	x->next_balance = r0->counts.windows + (uint64_t)r0->p.balance;
+	free(mine);
 	return st;
-}
-
-/* 1 when rank r waits at a cut where the cuts may move: between windows after a
- * commit (not a rerun of the rollback check), before the end. */
-static int balance_due(const lz_pedmd_sim *x, const lz_pedmd *r)
-{
-	return r->p.balance > 0 && r->phase == LZ_PEDMD_BEGIN && r->T < x->t_stop &&
-	       isnan(r->forced_end) && !r->rerun && r->counts.windows >= x->next_balance;
 }
 
 static int work(int rank, void *arg, lz_work *state)
@@ -151,7 +137,7 @@ static int work(int rank, void *arg, lz_work *state)
 		if (lz_pedmd_audit(x->rank, x->P) != LZ_OK)
 			return lz_error(LZ_EDOM, "at the cut of time %.17g: %s", r->T, lz_error_message());
 	}
-	if (balance_due(x, r)) {
+	if (lz_pedmd_balance_due(r, x->t_stop)) {
 		if (!all_at(x, r->T)) {  /* held until every rank is at the cut */
 			*state = LZ_WORK_BUSY;
 			lz_msg_charge(r->msg, 1);

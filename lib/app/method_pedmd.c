@@ -67,7 +67,7 @@ static const lz_key keys[] = {
 	 .help = "pilot: run once first and cut the curve so that every rank gets the same "
 	         "share of the pilot's committed events; dynamic: move the cuts during the run, "
 	         "at a cut every balance_every windows, to even out the events since the last "
-	         "move, when the busiest rank gains 10 % (not under lz-mpi)"},
+	         "move, when the busiest rank gains 10 %"},
 	{.name = "balance_every", .type = LZ_KEY_INT, .def = "16", .min = 1, .max = 1e6,
 	 .help = "balance = dynamic: windows between two looks at the load"},
 	{.name = "recheck", .type = LZ_KEY_BOOL, .def = "no",
@@ -194,9 +194,7 @@ static int check(const lz_scene *s)
 	return LZ_OK;
 }
 
-/* balance = pilot: cuts from the committed events of a first run of the same time;
- * *ratio gets the busiest rank's share under them over that under the even cuts. */
-static int pilot_cuts(const lz_pedmd_scene *p, uint32_t *cut, int *moved, double *ratio)
+int lz_pedmd_scene_pilot(const lz_pedmd_scene *p, uint32_t *cut, int *moved, double *ratio)
 {
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(p->system, p->kind, &p->stub, &p->params);
 	if (!x)
@@ -302,7 +300,7 @@ static int run(const lz_scene *s, lz_run *run)
 	int moved = 0;
 	double ratio = NAN;
 	if (lz_scene_enum(s, "balance") == 1)
-		st = pilot_cuts(&p, cut, &moved, &ratio);
+		st = lz_pedmd_scene_pilot(&p, cut, &moved, &ratio);
 	lz_pedmd_sim *x = NULL;
 	double t0 = lz_wall_now();
 	if (st == LZ_OK) {

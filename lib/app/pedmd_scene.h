@@ -25,6 +25,13 @@ typedef struct {
 int lz_pedmd_scene_make(const lz_scene *s, int quiet, lz_pedmd_scene *out);
 void lz_pedmd_scene_free(lz_pedmd_scene *p);
 
+/* balance = pilot: the cuts cut[0 .. P] from the committed events of a first run of
+ * the same time over the stub (in one process; the load of a cell does not depend on
+ * the schedule), *moved = 1 when they pay (lz_pedmd_rebalance), and in *ratio the
+ * busiest rank's share under them over that under the even cuts. LZ_OK or an error.
+ * O(the run). */
+int lz_pedmd_scene_pilot(const lz_pedmd_scene *p, uint32_t *cut, int *moved, double *ratio);
+
 /* The serial run of p's reference to p->t_stop, re-based where the ranks re-base
  * (lz_pedmd_serial): what the ranks must commit bit for bit. LZ_OK or an error.
  * O(events log n). */

@@ -394,6 +394,60 @@ LZ_TEST(pedmd_cuts_move_during_a_run)
 }
 END_TEST
 
+LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
+{
+	/* what lz-mpi does at a cut, one rank at a time: the owned particles of all ranks
+	 * are every particle once; each rank takes its share under new cuts, and the run
+	 * goes on as the serial run. A picture that misses a particle or holds one twice,
+	 * or a rank in the middle of a window, is refused with a message */
+	lz_edmd *s = gas(2, 600, 0.35, 5), *ref = gas(2, 600, 0.35, 5);
+	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 2, 2, 0, 4, 1e-6, 2e-6, 5e-6};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0};
+	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_ROWS, &sp, &pp);
+	ck_assert_ptr_nonnull(x);
+	ck_assert_int_eq(lz_pedmd_sim_run(x, 0.4), LZ_OK);
+	for (int k = 0; k < 3; k++)  /* a run that ended at 0.4 waits at a cut there */
+		x->rank[k]->phase = LZ_PEDMD_BEGIN;
+	lz_pedmd_message *all = malloc(s->n * sizeof *all);
+	size_t n = 0;
+	for (int k = 0; k < 3; k++)
+		n += lz_pedmd_owned(x->rank[k], all + n);
+	ck_assert_msg(n == s->n, "the ranks own %zu of the %zu particles", n, s->n);
+	/* broken pictures: one short, one particle twice */
+	ck_assert_int_eq(lz_pedmd_take(x->rank[0], all, n - 1), LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), "picture") != NULL, "says: %s", lz_error_message());
+	lz_pedmd_message keep = all[1];
+	all[1] = all[0];
+	ck_assert_int_eq(lz_pedmd_take(x->rank[0], all, n), LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), "twice") != NULL, "says: %s", lz_error_message());
+	all[1] = keep;
+	/* new cuts: the middle rank takes a third of the cells more */
+	x->d->cut[1] = (uint32_t)(x->d->ncells / 6);
+	for (int k = 0; k < 3; k++)
+		ck_assert_msg(lz_pedmd_take(x->rank[k], all, n) == LZ_OK, "rank %d: %s", k,
+		              lz_error_message());
+	ck_assert_msg(lz_pedmd_audit(x->rank, 3) == LZ_OK, "after the hand-over: %s",
+	              lz_error_message());
+	ck_assert_int_eq(lz_pedmd_sim_run(x, 1.0), LZ_OK);
+	ck_assert_int_eq(lz_pedmd_serial(ref, 0.4, 0.5), LZ_OK);  /* stopped there too */
+	ck_assert_int_eq(lz_pedmd_serial(ref, 1.0, 0.5), LZ_OK);
+	lz_pedmd_sim_gather(x, s);
+	for (uint32_t i = 0; i < s->n; i++)
+		LZ_REQUIRE(memcmp(&s->p[i], &ref->p[i], sizeof ref->p[i]) == 0, "particle %u differs "
+		      "from the serial run after the hand-over", i);
+	/* a rank in the middle of a window cannot take a picture */
+	x->rank[1]->phase = LZ_PEDMD_RUN;
+	ck_assert_int_eq(lz_pedmd_take(x->rank[1], all, n), LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), "only at a cut") != NULL, "says: %s",
+	              lz_error_message());
+	x->rank[1]->phase = LZ_PEDMD_DONE;
+	free(all);
+	lz_pedmd_sim_free(x);
+	lz_edmd_free(s);
+	lz_edmd_free(ref);
+}
+END_TEST
+
 LZ_TEST(pedmd_rollback_check_reruns_every_window_alike)
 {
 	/* every window rolled back and run again, as the schedule then goes: the same end;

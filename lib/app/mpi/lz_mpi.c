@@ -11,8 +11,13 @@
  * (stdout) and, with check = yes, runs the serial reference and compares bit for bit.
  * Before the run, ranks 0 and 1 measure what a message costs and how long it travels
  * (probe): the report prints both, for the virtual-time model of `make bench`.
- * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here;
- * balance = pilot or dynamic is refused (not done under MPI yet).
+ * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here.
+ * balance = pilot: every process runs the same pilot in one process first (over the
+ * stub: its committed events per cell do not depend on the schedule) and takes the
+ * same cuts. balance = dynamic: at every cut that lz_pedmd_balance_due names, the
+ * ranks sum their load since the last look (MPI_Allreduce), all find the same new
+ * cuts, and when these pay every rank all-gathers the owned particles (the serial
+ * picture, O(N) a process) and takes its share (lz_pedmd_take).
  *
  * Exit status, the same on every process: 0 success; 1 the run failed or differs from
  * the serial run; 2 bad input (usage, scene file, key, value, ranks). A failure while
@@ -38,12 +43,6 @@
 #include "scene.h"
 
 enum { USAGE = -1 };  /* a usage error: the message, then the usage line */
-
-/* One gathered particle. */
-typedef struct {
-	uint32_t id, pad;
-	lz_edmd_particle p;
-} particle_record;
 
 /* The code of the last lz_error: lz_scene_read reports failure with NULL. The
  * messages are printed once, by the rank that speaks for all (lz_error_message). */
@@ -151,9 +150,6 @@ static int make(lz_scene *s, int rank, int size, lz_pedmd_scene *p)
 		                     "(mpirun -np %d), which are the ranks: leave the key out, or "
 		                     "run mpirun -np %lld", lz_scene_int(s, "ranks"), size, size,
 		                     lz_scene_int(s, "ranks"));
-	if (lz_scene_enum(s, "balance") != 0)
-		return lz_scene_fail(s, "balance", "balance = pilot or dynamic is not done under "
-		                     "lz-mpi yet (lz run does both over the stub); use balance = none");
 	/* Only rank 0 runs the serial reference: the others need not build it. */
 	int st = LZ_OK;
 	if (rank != 0 && lz_scene_bool(s, "check") &&
@@ -180,58 +176,100 @@ static lz_pedmd_counts counts_of_all(const lz_pedmd *r, int rank, int size)
 	return sum;
 }
 
-/* The owned particles of every rank written into `out` on rank 0 (its cells are not
- * updated: the serial picture, as lz_pedmd_sim_gather). LZ_OK, or an error on rank 0
- * when a particle came never or twice. O(N) on rank 0, O(owned) elsewhere. */
-static int gather(const lz_pedmd *r, int rank, int size, lz_edmd *out)
+/* The owned particles of every rank (lz_pedmd_owned), on rank 0 (everywhere: MPI
+ * collects to all): a malloc'd array in *all, their number in *n (0 and NULL on the
+ * other ranks unless everywhere). LZ_OK; LZ_EDOM when the ranks own more than N. O(N)
+ * where collected, O(owned) elsewhere. Collective over MPI_COMM_WORLD. */
+static int collect(const lz_pedmd *r, int rank, int size, int everywhere,
+                   lz_pedmd_message **all, size_t *n)
 {
-	const lz_edmd *e = lz_pedmd_system(r);
-	int mine = 0;
-	for (uint32_t i = 0; i < e->n; i++)
-		mine += lz_pedmd_role(r, i) == LZ_PEDMD_OWNED;
-	particle_record *own = malloc((size_t)(mine ? mine : 1) * sizeof *own);
-	particle_record *all = rank == 0 ? malloc(e->n * sizeof *all) : NULL;
-	int *count = rank == 0 ? malloc(2 * (size_t)size * sizeof *count) : NULL;
-	uint8_t *seen = rank == 0 ? calloc(e->n, 1) : NULL;
-	if (!own || (rank == 0 && (!all || !count || !seen))) {
-		lz_error(LZ_ENOMEM, "no memory to gather %zu particles", e->n);
+	size_t N = lz_pedmd_system(r)->n;
+	int here = everywhere || rank == 0, mine = (int)lz_pedmd_owned(r, NULL);
+	lz_pedmd_message *own = malloc((size_t)(mine ? mine : 1) * sizeof *own);
+	int *count = malloc(2 * (size_t)size * sizeof *count);
+	*all = here ? malloc(N * sizeof **all) : NULL;
+	*n = 0;
+	if (!own || !count || (here && !*all)) {
+		lz_error(LZ_ENOMEM, "no memory to collect %zu particles", N);
 		abort_run(rank, LZ_ENOMEM);
 	}
-	int k = 0;
-	for (uint32_t i = 0; i < e->n; i++)
-		if (lz_pedmd_role(r, i) == LZ_PEDMD_OWNED)
-			own[k++] = (particle_record){i, 0, e->p[i]};
+	lz_pedmd_owned(r, own);
+	MPI_Allgather(&mine, 1, MPI_INT, count, 1, MPI_INT, MPI_COMM_WORLD);
+	int *at = count + size, st = LZ_OK;
+	for (int q = 0; q < size; q++) {  /* <= N < 2^31: every displacement is an int */
+		at[q] = (int)*n;
+		*n += (size_t)count[q];
+		if (*n > N)
+			st = lz_error(LZ_EDOM, "the ranks own more than the %zu particles", N);
+	}
+	if (st != LZ_OK)
+		abort_run(rank, st);
 	MPI_Datatype type;
 	MPI_Type_contiguous((int)sizeof *own, MPI_BYTE, &type);
 	MPI_Type_commit(&type);
-	MPI_Gather(&mine, 1, MPI_INT, count, 1, MPI_INT, 0, MPI_COMM_WORLD);
-	int *at = count ? count + size : NULL, st = LZ_OK;
-	size_t total = 0;  /* <= N < 2^31, so that every displacement is an int */
-	for (int q = 0; rank == 0 && q < size && st == LZ_OK; q++) {
-		at[q] = (int)total;
-		total += (size_t)count[q];
-		if (total > e->n)
-			st = lz_error(LZ_EDOM, "the ranks own more than the %zu particles", e->n);
-	}
-	if (rank == 0 && st != LZ_OK)
-		abort_run(rank, st);
-	MPI_Gatherv(own, mine, type, all, count, at, type, 0, MPI_COMM_WORLD);
+	if (everywhere)
+		MPI_Allgatherv(own, mine, type, *all, count, at, type, MPI_COMM_WORLD);
+	else
+		MPI_Gatherv(own, mine, type, *all, count, at, type, 0, MPI_COMM_WORLD);
 	MPI_Type_free(&type);
-	for (size_t q = 0; rank == 0 && q < total && st == LZ_OK; q++) {
+	if (!here)
+		*n = 0;
+	free(own);
+	free(count);
+	return LZ_OK;
+}
+
+/* The owned particles of every rank written into `out` on rank 0 (its cells are not
+ * updated: the serial picture, as lz_pedmd_sim_gather). LZ_OK, or an error on rank 0
+ * when a particle came never or twice. Collective. */
+static int gather(const lz_pedmd *r, int rank, int size, lz_edmd *out)
+{
+	const lz_edmd *e = lz_pedmd_system(r);
+	lz_pedmd_message *all;
+	size_t n;
+	collect(r, rank, size, 0, &all, &n);
+	uint8_t *seen = rank == 0 ? calloc(e->n, 1) : NULL;
+	int st = rank == 0 && !seen ? lz_error(LZ_ENOMEM, "no memory for %zu marks", e->n) : LZ_OK;
+	for (size_t q = 0; rank == 0 && q < n && st == LZ_OK; q++) {
 		uint32_t i = all[q].id;
 		if (i >= e->n || seen[i]++)
 			st = lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
 		else
 			out->p[i] = all[q].p;
 	}
-	if (rank == 0 && st == LZ_OK && total != e->n)
-		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", total, e->n);
+	if (rank == 0 && st == LZ_OK && n != e->n)
+		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", n, e->n);
 	out->t_base = e->t_base;  /* the particles' times are in the ranks' time base */
 	out->now = e->now;
-	free(own);
 	free(all);
-	free(count);
 	free(seen);
+	return st;
+}
+
+/* balance = dynamic, at a cut lz_pedmd_balance_due names (every rank is there): the
+ * load since the last look summed over the ranks, the same new cuts everywhere, and
+ * when they pay, every rank takes its share of the collected picture. LZ_OK or an
+ * error. Collective. O(cells), and O(N) when the cuts move. */
+static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
+{
+	size_t nc = d->ncells;
+	double *load = malloc(nc * sizeof *load);
+	int st = load ? lz_pedmd_load_since(r, load)
+	              : lz_error(LZ_ENOMEM, "no memory for the load of %zu cells", nc);
+	if (st != LZ_OK)
+		abort_run(rank, st);
+	MPI_Allreduce(MPI_IN_PLACE, load, (int)nc, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1];
+	int moved = lz_pedmd_rebalance(d, load, r->p.threshold, cut);
+	free(load);
+	if (!moved)
+		return LZ_OK;
+	lz_pedmd_message *all;
+	size_t n;
+	collect(r, rank, size, 1, &all, &n);
+	memcpy(d->cut, cut, (size_t)(size + 1) * sizeof *cut);
+	st = lz_pedmd_take(r, all, n);
+	free(all);
 	return st;
 }
 
@@ -289,7 +327,7 @@ static probe_result probe(lz_msg *msg, int rank, int size)
 }
 
 static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
-                   const lz_pedmd_counts *c, double wall, probe_result cost)
+                   const lz_pedmd_counts *c, double wall, probe_result cost, double pilot)
 {
 	const lz_edmd *e = p->system;
 	printf("lz-mpi: scene %s, %zu %s, %d ranks along the %s curve\n", lz_scene_name(s), e->n,
@@ -305,6 +343,10 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 	printf("windows               %llu\n", (unsigned long long)c->windows);
 	printf("rollbacks             %llu\n", (unsigned long long)c->rollbacks);
 	printf("conservative steps    %llu\n", (unsigned long long)c->conservative);
+	if (p->params.balance > 0)
+		printf("cut moves             %llu\n", (unsigned long long)c->balances);
+	if (!isnan(pilot))
+		printf("pilot busiest share   %.4f (pilot cuts over even cuts)\n", pilot);
 	printf("parallel wall time    %.4f s\n", wall);
 	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
 	if (size > 1)
@@ -320,6 +362,7 @@ typedef struct {
 	lz_pedmd_domains *d;
 	lz_msg *msg;
 	lz_pedmd *r;
+	double pilot_ratio;  /* balance = pilot: the busiest rank's share, pilot cuts / even */
 } lz_mpi_run;
 
 /* Scene, seeds, system and domains, agreed on after every step that can fail (the
@@ -330,9 +373,14 @@ static int setup(int argc, char **argv, int rank, int size, lz_mpi_run *x)
 	if (agree(load(argc, argv, size, &x->s), rank, size, &agreed) ||
 	    agree(share_seeds(x->s, rank), rank, size, &agreed))
 		return agreed;
-	int st = make(x->s, rank, size, &x->p);
+	int st = make(x->s, rank, size, &x->p), moved = 0;
+	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1];
+	if (st == LZ_OK && lz_scene_enum(x->s, "balance") == 1)  /* pilot: the same everywhere */
+		st = lz_pedmd_scene_pilot(&x->p, cut, &moved, &x->pilot_ratio);
 	if (st == LZ_OK && !(x->d = lz_pedmd_domains_alloc(x->p.system, size, x->p.kind)))
 		st = last_code ? last_code : LZ_EINVAL;
+	if (st == LZ_OK && moved)
+		memcpy(x->d->cut, cut, (size_t)(size + 1) * sizeof *cut);
 	if (agree(st, rank, size, &agreed))
 		return agreed;
 	if (!(x->msg = lz_msg_mpi_open()))  /* collective: a failure here stops everyone */
@@ -361,7 +409,7 @@ int main(int argc, char **argv)
 	MPI_Comm_rank(MPI_COMM_WORLD, &rank);
 	MPI_Comm_size(MPI_COMM_WORLD, &size);
 	lz_set_error_handler(record);
-	lz_mpi_run x = {0};
+	lz_mpi_run x = {.pilot_ratio = NAN};
 	int st = setup(argc, argv, rank, size, &x);
 	if (st != LZ_OK)
 		return quit(&x, st);
@@ -374,6 +422,9 @@ int main(int argc, char **argv)
 	double t0 = MPI_Wtime();
 	lz_work state = LZ_WORK_BUSY;
 	while (state != LZ_WORK_DONE) {
+		if (lz_pedmd_balance_due(x.r, x.p.t_stop) &&
+		    (st = move_cuts(x.r, x.d, rank, size)) != LZ_OK)
+			abort_run(rank, st);
 		if ((st = lz_pedmd_work(x.r, x.p.t_stop, &state)) != LZ_OK)
 			abort_run(rank, st);
 		if (state == LZ_WORK_WAIT)
@@ -386,7 +437,7 @@ int main(int argc, char **argv)
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
 	st = gather(x.r, rank, size, x.p.system);
 	if (rank == 0 && st == LZ_OK)
-		report(x.s, &x.p, size, &c, slowest, cost);
+		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {
 		size_t k = lz_pedmd_scene_differ(x.p.system, x.p.reference);
 		if (k == 0)

@@ -58,8 +58,12 @@
  * Load balancing. Every rank counts the committed events of each cell (load). New
  * cuts along the curve give every rank the same share of the load (lz_pedmd_rebalance);
  * a run started with those cuts is balanced for a system whose load stays where it
- * was; a run in one process (lz_pedmd_sim_run, params.balance) also moves them at a
- * cut every so many windows, the particles changing owners there (lz_pedmd_recut).
+ * was; params.balance also moves them during a run, at a cut every so many windows,
+ * the particles changing owners there: every rank adds what its cells committed since
+ * the last look (lz_pedmd_load_since), all see the same sum and the same new cuts, and
+ * each takes its share of the serial picture that the owned particles of all ranks
+ * make (lz_pedmd_owned, lz_pedmd_take) — in one process (lz_pedmd_recut) or over MPI
+ * (lz-mpi: a sum and an all-gather).
  *
  * The clock is re-based (lz_edmd_rebase) at absolute multiples of `rebase` only, the
  * same times as the serial reference (rebase_auto = 0), so that both round alike:
@@ -167,10 +171,10 @@ typedef struct {
 	double window;      /* the first window's length (> 0); it adapts: x1.125 after a
 	                       commit, /2 after a rollback, within [window/64, 64 window] */
 	double rebase;      /* re-base the clock at absolute multiples of this (> 0) */
-	int balance;        /* lz_pedmd_sim_run: new cuts from the load since the last ones
-	                       every this many windows (0: never), moved when they pay
-	                       (threshold; lz_pedmd_recut). The ranks themselves never move
-	                       cuts: lz-mpi runs keep theirs */
+	int balance;        /* new cuts from the load since the last ones every this many
+	                       windows (0: never), moved when they pay (threshold): the
+	                       driver of the ranks (lz_pedmd_sim_run, lz-mpi) asks
+	                       lz_pedmd_balance_due at every cut */
 	double threshold;   /* ... when the largest load improves by this fraction */
 	int log;            /* 1: keep the committed events (lz_pedmd_log) */
 	int work;           /* events per turn of the work function (> 0) */
@@ -250,6 +254,9 @@ typedef struct lz_pedmd {
 	int rerun;                    /* 1: this window runs the second time */
 	uint64_t print0, print1;      /* fingerprints: the window's start, its first end */
 	int failed;                   /* an LZ_E code lz_pedmd_work returns (lz_error set) */
+	/* moving cuts (params.balance) */
+	uint64_t next_balance;        /* the windows begun at the next look at the load */
+	double *load0;                /* load[] at the last look (NULL: none yet) */
 } lz_pedmd;
 
 /* ---- graded (solutions/06-parallel/pedmd.c) ---- */
@@ -403,12 +410,35 @@ lz_pedmd_counts lz_pedmd_counters(const lz_pedmd *r);
 const lz_pedmd_record *lz_pedmd_log(const lz_pedmd *r, size_t *n);
 int lz_pedmd_role(const lz_pedmd *r, uint32_t i);
 
-/* Move the cuts at a cut: every rank between windows at the same time T, nothing
- * waiting. The owned particles of all ranks (ranks[], all P in one process) make the
- * serial picture — records, own events and their times —, d->cut becomes cut[0 .. P],
- * and every rank takes its share of the picture as lz_pedmd_alloc would, so that the
- * run goes on bit for bit (balances + 1 on each). LZ_OK, LZ_EINVAL when not at a cut,
- * or LZ_ENOMEM. O(P (N + cells)). */
+/* ---- moving the cuts during a run (params.balance) ---- */
+
+/* 1 when rank r waits at a cut where the cuts may move: between windows after a
+ * commit (not a rerun of the rollback check), before t_stop, and params.balance
+ * windows after the last look. Every rank of a run answers alike at the same cut
+ * (the verdicts are common), so that all of them take part in what follows. O(1). */
+int lz_pedmd_balance_due(const lz_pedmd *r, double t_stop);
+
+/* This rank's share of the load since its last look, into delta[0 .. cells-1]: the
+ * events its cells committed since then (the sum over the ranks is the whole run's);
+ * the next look is params.balance windows on. LZ_OK or LZ_ENOMEM. O(cells). */
+int lz_pedmd_load_since(lz_pedmd *r, double *delta);
+
+/* The particles rank r owns, as messages (id, record, own event with its time; kind
+ * MIGRATE), into out[] (room for N; NULL: only count them): its part of the serial
+ * picture. Their number. O(N). */
+size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out);
+
+/* At a cut (phase BEGIN, nothing waiting): rank r takes its share, under the cuts now
+ * in r->d, of the serial picture that all[0 .. n-1] make — every particle once, from
+ * lz_pedmd_owned of all ranks — as lz_pedmd_alloc would from a serial system, so that
+ * the run goes on bit for bit (balances + 1). LZ_OK; LZ_EINVAL when not at a cut or
+ * when all[] is not every particle once; LZ_ENOMEM. O(N + cells). */
+int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n);
+
+/* Move the cuts of P ranks in one process: every rank between windows at the same
+ * time T, nothing waiting; d->cut becomes cut[0 .. P] and every rank takes its share
+ * of the picture their owned particles make (lz_pedmd_take). LZ_OK, LZ_EINVAL when not
+ * at a cut, or LZ_ENOMEM. O(P (N + cells)). */
 int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut);
 
 /* The invariants of rank r at a cut: its owned particles lie in owned cells, each in
@@ -432,8 +462,6 @@ typedef struct {
 	uint64_t audits;     /* cuts audited so far */
 	double t_stop;       /* of the current lz_pedmd_sim_run */
 	double audited_T;    /* the window start audited last */
-	uint64_t next_balance;  /* params.balance > 0: the windows begun at the next try */
-	double *load0;       /* the load of every cell at the last try (NULL: none yet) */
 } lz_pedmd_sim;
 
 /* The ranks of a run of system s (lz_edmd_start done, rebase_auto = 0) along curve
