@@ -85,7 +85,7 @@ typedef struct {
 static int melt(const system_def *s, const sizes *sz, double **r, double **v, int *m_auto,
                 double *L)
 {
-	lz_edmd_params p = {s->dim, s->n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {s->dim, s->n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	lz_rng *rng = lz_rng_alloc(NULL, SEED);
 	int st = e && rng ? lz_edmd_place_lattice(e, rng) : LZ_ENOMEM;
@@ -140,7 +140,7 @@ static int measure(const system_def *s, const sizes *sz, const double *r, const 
 	double ev_tot[MAXM + 1] = {0}, coll_tot[MAXM + 1] = {0};
 	int st = LZ_OK;
 	for (int k = 0; k < np && st == LZ_OK; k++) {
-		lz_edmd_params p = {s->dim, s->n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, ms[k]};
+		lz_edmd_params p = {s->dim, s->n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, ms[k], LZ_EDMD_CELLS, 0, 0};
 		e[k] = lz_edmd_alloc(&p);
 		st = e[k] ? lz_edmd_set(e[k], r, v) : LZ_EINVAL;
 		if (st == LZ_OK)

@@ -82,7 +82,7 @@ static size_t n_of(int dim) { return dim == 3 ? 4000 : 4096; }
 static int measure(const state *s, const sizes *sz, lz_edmd_result *r, double *cpu_total)
 {
 	size_t n = n_of(s->dim);
-	lz_edmd_params p = {s->dim, n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {s->dim, n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	lz_rng *rng = lz_rng_alloc(NULL, SEED);
 	double t0 = lz_cpu_now();

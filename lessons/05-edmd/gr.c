@@ -161,7 +161,7 @@ static int md_block(lz_edmd *e, unsigned long samples, gsl_histogram *h, gr_run 
 
 static int molecular_dynamics(const sizes *sz, lz_rng *rng, gsl_histogram *h, gr_run *md)
 {
-	lz_edmd_params p = {2, N, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {2, N, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	int st = e ? lz_edmd_place_lattice(e, rng) : LZ_EINVAL;
 	double t0 = lz_cpu_now();

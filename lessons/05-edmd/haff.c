@@ -174,7 +174,7 @@ int main(int argc, char **argv)
 	       ETA, sz->melt, sz->tau_max, SEED);
 	cooling c[NREST];
 	for (int k = 0; k < NREST; k++) {
-		lz_edmd_params p = {DIM, sz->n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+		lz_edmd_params p = {DIM, sz->n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 		lz_edmd *e = lz_edmd_alloc(&p);
 		lz_rng *rng = lz_rng_alloc(NULL, SEED);
 		int st = e && rng ? lz_edmd_place_lattice(e, rng) : LZ_EINVAL;

@@ -65,7 +65,7 @@ typedef struct {
 /* A fresh system, placed on the lattice (the same seed every time). */
 static lz_edmd *fresh(size_t n)
 {
-	lz_edmd_params p = {3, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {3, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	lz_rng *rng = lz_rng_alloc(NULL, SEED);
 	if (!e || !rng || lz_edmd_place_lattice(e, rng) != LZ_OK) {

@@ -140,7 +140,7 @@ static int timed(lz_edmd *e, uint64_t events, speed *s)
  * and shuffled (s[1]). */
 static int measure(int dim, size_t n, const sizes *sz, lz_rng *rng, speed s[3])
 {
-	lz_edmd_params p = {dim, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {dim, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p), *u = lz_edmd_alloc(&p);
 	double *r = malloc(3 * n * sizeof *r), *v = malloc(3 * n * sizeof *v);
 	gsl_permutation *perm = gsl_permutation_alloc(n);

@@ -212,7 +212,7 @@ int main(int argc, char **argv)
 	printf("trade: %zu hard spheres at η = %g, %g time units per run in %d blocks, seed "
 	       "%u; Z_ref = %.4f ± %g\n", sz->n, ETA, sz->time, BLOCKS, SEED, zref, zref_err);
 
-	lz_edmd_params p = {DIM, sz->n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {DIM, sz->n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	double *r0 = malloc(3 * sz->n * sizeof *r0), *v0 = malloc(3 * sz->n * sizeof *v0);
 	lz_edmd_result ed;

@@ -112,7 +112,7 @@ static size_t sites(double L, double *r)
 
 static lz_edmd_params params_of(double L, size_t n)
 {
-	lz_edmd_params p = {2, n, (double)n * M_PI / 4 / (L * L), 1, 0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {2, n, (double)n * M_PI / 4 / (L * L), 1, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	return p;
 }
 

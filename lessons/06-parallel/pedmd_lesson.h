@@ -157,7 +157,7 @@ static inline int melt_in(lz_edmd *e, double melt, double tau)
  * reference. NULL with lz_error. */
 static inline lz_edmd *gas_make(const gas *g)
 {
-	lz_edmd_params p = {g->dim, g->n, g->eta, g->restitution, g->gravity, g->walls, 0};
+	lz_edmd_params p = {g->dim, g->n, g->eta, g->restitution, g->gravity, g->walls, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	if (!e)
 		return NULL;
@@ -178,7 +178,7 @@ static inline lz_edmd *gas_make(const gas *g)
  * gathered (lz_pedmd_sim_gather). */
 static inline lz_edmd *gas_blank(const gas *g)
 {
-	lz_edmd_params p = {g->dim, g->n, g->eta, g->restitution, g->gravity, g->walls, 0};
+	lz_edmd_params p = {g->dim, g->n, g->eta, g->restitution, g->gravity, g->walls, 0, LZ_EDMD_CELLS, 0, 0};
 	return lz_edmd_alloc(&p);
 }
 

@@ -1,7 +1,8 @@
-/* edmd_lib.c — the library half of lz/edmd.h: cells and their faces, the box and its
- * checks, the initial states and the start, the counters and the overlap check. The
- * run, the re-base and the guards are in edmd_run.c (which calls this file, never
- * the other way round); the graded event loop in solutions/05-edmd/edmd.c. */
+/* edmd_lib.c — the library half of lz/edmd.h: the box and its checks, the initial
+ * states and the start, the counters and the overlap check. The cells are in
+ * edmd_cells.c, the neighbour lists in edmd_list.c (both called from here, never the
+ * other way round); the run, the re-base and the guards in edmd_run.c (which calls
+ * this file); the graded event loop in solutions/05-edmd/edmd.c. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,138 +15,6 @@
 
 /* Volume (area) of one particle of diameter 1. */
 static double particle_volume(int dim) { return dim == 3 ? M_PI / 6 : M_PI / 4; }
-
-/* The cell's coordinates on its three axes. */
-static void cell_coords(const lz_edmd *e, uint32_t c, int cc[3])
-{
-	cc[0] = (int)(c % (uint32_t)e->m[0]);
-	cc[1] = (int)(c / (uint32_t)e->m[0] % (uint32_t)e->m[1]);
-	cc[2] = (int)(c / ((uint32_t)e->m[0] * (uint32_t)e->m[1]));
-}
-
-static uint32_t cell_index(const lz_edmd *e, const int cc[3])
-{
-	return (uint32_t)cc[0] + (uint32_t)e->m[0] * ((uint32_t)cc[1] + (uint32_t)e->m[1] * (uint32_t)cc[2]);
-}
-
-/* The block of a cell at least one cell away from every face of the box: three cells
- * on each axis (one on z in 2D), no shift. Most blocks; the general loop below costs
- * several times as much. */
-static void block_inside(const lz_edmd *e, const int cc[3], lz_edmd_block *b)
-{
-	uint32_t s1 = (uint32_t)e->m[0], s2 = s1 * (uint32_t)e->m[1];
-	for (int k = 0; k < 3; k++) {
-		b->off[0][k] = (uint32_t)(cc[0] - 1 + k);
-		b->off[1][k] = (uint32_t)(cc[1] - 1 + k) * s1;
-		b->off[2][k] = (uint32_t)(cc[2] - 1 + k) * s2;
-		b->shift[0][k] = b->shift[1][k] = b->shift[2][k] = 0;
-	}
-	b->n[0] = b->n[1] = 3;
-	b->n[2] = e->dim == 3 ? 3 : 1;
-	if (e->dim == 2)
-		b->off[2][0] = 0;
-	b->wraps = 0;
-}
-
-void lz_edmd_block_of(const lz_edmd *e, uint32_t c, lz_edmd_block *b)
-{
-	int cc[3];
-	cell_coords(e, c, cc);
-	if (cc[0] > 0 && cc[0] < e->m[0] - 1 && cc[1] > 0 && cc[1] < e->m[1] - 1 &&
-	    (e->dim == 2 || (cc[2] > 0 && cc[2] < e->m[2] - 1))) {
-		block_inside(e, cc, b);
-		return;
-	}
-	uint32_t stride = 1;
-	b->wraps = 0;
-	for (int a = 0; a < 3; a++) {
-		int k = 0, reach = a < e->dim ? 1 : 0;
-		for (int d = -reach; d <= reach; d++) {
-			int x = cc[a] + d;
-			double sh = 0;
-			if (x < 0 || x >= e->m[a]) {
-				if (e->wall[a])
-					continue;
-				sh = x < 0 ? -e->L : e->L;
-				x += x < 0 ? e->m[a] : -e->m[a];
-			}
-			b->off[a][k] = (uint32_t)x * stride;
-			b->shift[a][k++] = sh;
-			b->wraps |= sh != 0;
-		}
-		b->n[a] = k;
-		stride *= (uint32_t)e->m[a];
-	}
-}
-
-void lz_edmd_prefetch_block(const lz_edmd *e, uint32_t c)
-{
-	lz_edmd_block b;
-	lz_edmd_block_of(e, c, &b);
-	/* a row's cells span at most two cache lines: its first and last cells */
-	for (int z = 0; z < b.n[2]; z++)
-		for (int y = 0; y < b.n[1]; y++) {
-			uint32_t row = b.off[1][y] + b.off[2][z];
-			uint32_t first = row + b.off[0][0], last = row + b.off[0][b.n[0] - 1];
-			__builtin_prefetch(&e->list[first]);
-			__builtin_prefetch(&e->list[last]);
-		}
-}
-
-uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump)
-{
-	int cc[3], a = f / 2;
-	cell_coords(e, c, cc);
-	cc[a] += f % 2 ? 1 : -1;
-	*jump = 0;
-	if (cc[a] < 0) {
-		cc[a] += e->m[a];
-		*jump = e->L;
-	} else if (cc[a] >= e->m[a]) {
-		cc[a] -= e->m[a];
-		*jump = -e->L;
-	}
-	return cell_index(e, cc);
-}
-
-void lz_edmd_cell_remove(lz_edmd *e, uint32_t i)
-{
-	uint32_t c = e->p[i].cell;
-	int32_t *link = &e->list[c].head;
-	while (*link != (int32_t)i)
-		link = &e->next[*link];
-	*link = e->next[i];
-	e->list[c].second = e->next[e->list[c].head];
-}
-
-void lz_edmd_cell_insert(lz_edmd *e, uint32_t i, uint32_t c)
-{
-	e->p[i].cell = c;
-	e->next[i] = e->list[c].second = e->list[c].head;
-	e->list[c].head = (int32_t)i;
-}
-
-void lz_edmd_cell_clear(lz_edmd *e)
-{
-	for (size_t c = 0; c < e->ncells; c++)
-		e->list[c].head = e->list[c].second = -1;
-}
-
-double lz_edmd_fall_time(double x, double v, double g, double lo, double hi, int *up)
-{
-	double rise = hi - x, drop = x - lo > 0 ? x - lo : 0;
-	if (v > 0) {
-		double disc = v * v - 2 * g * rise;
-		if (disc >= 0) {
-			*up = 1;
-			double t = 2 * rise / (v + sqrt(disc));
-			return t > 0 ? t : 0;
-		}
-	}
-	*up = 0;
-	double root = sqrt(v * v + 2 * g * drop);
-	return v >= 0 ? (v + root) / g : 2 * drop / (root - v);
-}
 
 /* ---- the box ---- */
 
@@ -189,40 +58,61 @@ static int check_params(const lz_edmd_params *p)
 		return lz_error(LZ_EINVAL, "gravity = %g pulls along -x and needs walls on x "
 		                "(walls = x or box): in a periodic box the particles would fall "
 		                "for ever", p->gravity);
+	if (p->neighbours != LZ_EDMD_CELLS && p->neighbours != LZ_EDMD_LIST)
+		return lz_error(LZ_EINVAL, "neighbours = %d must be cells (%d) or list (%d)",
+		                p->neighbours, LZ_EDMD_CELLS, LZ_EDMD_LIST);
+	if (p->queue < LZ_EDMD_QUEUE_AUTO || p->queue > LZ_EDMD_CALENDAR)
+		return lz_error(LZ_EINVAL, "queue = %d must be automatic (%d), heap (%d), heap4 (%d) "
+		                "or calendar (%d)", p->queue, LZ_EDMD_QUEUE_AUTO, LZ_EDMD_HEAP,
+		                LZ_EDMD_HEAP4, LZ_EDMD_CALENDAR);
+	if ((p->queue == LZ_EDMD_HEAP4 || p->queue == LZ_EDMD_CALENDAR) &&
+	    p->neighbours != LZ_EDMD_LIST)
+		return lz_error(LZ_EINVAL, "queue = %s (the library's) needs neighbours = list: with "
+		                "cells the graded event loop drives the binary heap",
+		                p->queue == LZ_EDMD_HEAP4 ? "heap4" : "calendar");
+	if (p->neighbours == LZ_EDMD_LIST && p->shell != 0 && !(p->shell > 1 && p->shell <= 4))
+		return lz_error(LZ_EINVAL, "shell = %g σ must be in (1, 4] (0: automatic): the "
+		                "neighbours are the centres within it, and it must exceed σ",
+		                p->shell);
 	return LZ_OK;
 }
 
-/* The cells per side for p in a box of side L, or 0 with lz_error. */
-static int choose_cells(const lz_edmd_params *p, double L)
+/* The cells per side for p in a box of side L, each at least `reach` wide (σ, or the
+ * shell S with lists), or 0 with lz_error. */
+static int choose_cells(const lz_edmd_params *p, double L, double reach)
 {
 	int walled = p->walls == LZ_EDMD_WALLS_BOX;  /* every axis has walls */
 	int least = walled ? 1 : 3;
+	const char *what = reach > 1 ? "the shell" : "σ";
 	if (p->cells == 0) {
-		int m = lz_edmd_auto_cells(p->dim, p->n, L);
+		int m = reach > 1 ? lz_edmd_list_cells(p->dim, p->n, L, reach)
+		                  : lz_edmd_auto_cells(p->dim, p->n, L);
 		if (m == 0 && walled)
-			m = L >= 1 ? (int)floor(L) : 0;
+			m = L >= reach ? (int)floor(L / reach) : 0;
 		if (m > 0)
-			return m;
-		double nmin = ceil(pow(3.0, p->dim) * p->packing / particle_volume(p->dim));
+			return (int)fmin(m, cells_cap(p->dim));
+		double nmin = ceil(pow(3.0 * reach, p->dim) * p->packing / particle_volume(p->dim));
 		lz_error(LZ_EINVAL,
-		         "the box side L = %.4g σ (n = %zu at packing %g) is below 3σ: a "
-		         "periodic box needs at least 3 cells of side σ per side (one cell per "
-		         "side is refused, not simulated); use n >= %.0f at this packing",
-		         L, p->n, p->packing, nmin);
+		         "the box side L = %.4g σ (n = %zu at packing %g) is below 3 times %s "
+		         "(%g σ): a periodic box needs at least 3 cells that wide per side (one "
+		         "cell per side is refused, not simulated); use n >= %.0f at this packing%s",
+		         L, p->n, p->packing, what, reach, nmin,
+		         reach > 1 ? ", a narrower shell, or neighbours = cells" : "");
 		return 0;
 	}
-	if (p->cells < least || L / p->cells < 1 || p->cells > cells_cap(p->dim)) {
-		int most = (int)fmin(floor(L), cells_cap(p->dim));
+	if (p->cells < least || L / p->cells < reach || p->cells > cells_cap(p->dim)) {
+		int most = (int)fmin(floor(L / reach), cells_cap(p->dim));
 		lz_error(LZ_EINVAL, "cells = %d per side must be in [%d, %d]: at least %d %s, "
-		         "each at least σ wide in a box of side %.4g σ, and at most 2^27 cells",
-		         p->cells, least, most, least,
-		         walled ? "" : "(a periodic block needs three distinct cells)", L);
+		         "each at least %s (%g σ) wide in a box of side %.4g σ, and at most 2^27 "
+		         "cells", p->cells, least, most, least,
+		         walled ? "" : "(a periodic block needs three distinct cells)", what, reach,
+		         L);
 		return 0;
 	}
 	return p->cells;
 }
 
-static int alloc_arrays(lz_edmd *e)
+static int alloc_arrays(lz_edmd *e, int queue)
 {
 	e->list = lz_bigmem_alloc(e->ncells * sizeof *e->list);
 	e->next = lz_bigmem_alloc((e->n + 1) * sizeof *e->next);
@@ -233,7 +123,10 @@ static int alloc_arrays(lz_edmd *e)
 	if (!e->list || !e->next || !e->p || !e->ev)
 		return lz_error(LZ_ENOMEM, "no memory for %zu particles in %zu cells", e->n,
 		                e->ncells);
-	e->heap = lz_heap_alloc(e->n);
+	/* a calendar's first days: lz_edmd_list_start sizes them from the first events */
+	if (queue == LZ_EDMD_CALENDAR)
+		return (e->cal = lz_calendar_alloc(e->n, 1.0 / (double)e->n)) ? LZ_OK : LZ_ENOMEM;
+	e->heap = lz_heap_alloc_arity(e->n, queue == LZ_EDMD_HEAP4 ? 4 : 2);
 	return e->heap ? LZ_OK : LZ_ENOMEM;
 }
 
@@ -242,7 +135,16 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p)
 	if (check_params(p))
 		return NULL;
 	double L = pow((double)p->n * particle_volume(p->dim) / p->packing, 1.0 / p->dim);
-	int m = choose_cells(p, L);
+	double shell = p->neighbours != LZ_EDMD_LIST ? 1
+	               : p->shell > 0 ? p->shell : lz_edmd_list_shell(p->dim, p->packing);
+	int m = choose_cells(p, L, shell);
+	if (m > 0 && shell > 1 && p->walls != LZ_EDMD_WALLS_BOX && !(L > 4 * shell - 2)) {
+		lz_error(LZ_EINVAL, "the box side L = %.4g σ is too small for the shell %g: two "
+		         "neighbours can be 2S - 1 = %g apart, which must stay below L/2 on a "
+		         "periodic axis; use a narrower shell, more particles, or neighbours = cells",
+		         L, shell, 2 * shell - 1);
+		return NULL;
+	}
 	if (m == 0)
 		return NULL;
 	lz_edmd *e = calloc(1, sizeof *e);
@@ -271,7 +173,10 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p)
 		return NULL;
 	}
 	e->ncells = (size_t)e->m[0] * e->m[1] * e->m[2];
-	if (alloc_arrays(e)) {
+	int queue = p->queue != LZ_EDMD_QUEUE_AUTO ? p->queue
+	            : p->neighbours == LZ_EDMD_LIST ? LZ_EDMD_CALENDAR : LZ_EDMD_HEAP;
+	if (alloc_arrays(e, queue) ||
+	    (p->neighbours == LZ_EDMD_LIST && !(e->lists = lz_edmd_list_alloc(e, shell)))) {
 		lz_edmd_free(e);
 		return NULL;
 	}
@@ -287,38 +192,49 @@ void lz_edmd_free(lz_edmd *e)
 	lz_bigmem_free(e->p);
 	lz_bigmem_free(e->ev);
 	lz_heap_free(e->heap);
+	lz_calendar_free(e->cal);
+	lz_edmd_list_free(e->lists);
 	free(e);
 }
 
 /* ---- the initial state ---- */
 
-/* The sites of a lattice of M per side (basis of nb points, in units of the lattice
- * constant) filling the box (on walled axes, the span [1/2, L - 1/2]) into r, 3 per
- * site; returns the number of sites and in *near the nearest distance between two. */
-static size_t lattice_sites(const lz_edmd *e, int M, const double (*basis)[3], int nb,
-                            double *r, double *near)
+/* A lattice of M cells per side with a basis of nb points (in units of the lattice
+ * constant) filling the box (on walled axes, the span [1/2, L - 1/2]). */
+typedef struct {
+	int M, nb, dim;
+	const double (*basis)[3];
+	double a[3], off[3];  /* the lattice constant and the origin on each axis */
+} lattice;
+
+static lattice lattice_of(const lz_edmd *e, int M, const double (*basis)[3], int nb)
 {
-	double a[3], off[3];
-	for (int x = 0; x < 3; x++) {
-		double span = e->wall[x] ? e->L - 1 : e->L;
-		a[x] = x < e->dim ? span / M : 0;
-		off[x] = e->wall[x] ? 0.5 : 0;
+	lattice g = {M, nb, e->dim, basis, {0, 0, 0}, {0, 0, 0}};
+	for (int x = 0; x < e->dim; x++) {
+		g.a[x] = (e->wall[x] ? e->L - 1 : e->L) / M;
+		g.off[x] = e->wall[x] ? 0.5 : 0;
 	}
-	size_t k = 0;
-	int Mz = e->dim == 3 ? M : 1;
-	for (int z = 0; z < Mz; z++)
-		for (int y = 0; y < M; y++)
-			for (int x = 0; x < M; x++)
-				for (int b = 0; b < nb; b++, k++) {
-					double u[3] = {x + basis[b][0], y + basis[b][1], z + basis[b][2]};
-					for (int c = 0; c < 3; c++)
-						r[3 * k + c] = c < e->dim ? off[c] + a[c] * u[c] : 0;
-				}
+	return g;
+}
+
+/* The sites of g and the nearest distance between two of them. */
+static size_t lattice_sites(const lattice *g) { return (size_t)g->nb * (size_t)pow(g->M, g->dim); }
+static double lattice_near(const lattice *g)
+{
 	double amin = INFINITY;
-	for (int x = 0; x < e->dim; x++)
-		amin = fmin(amin, a[x]);
-	*near = nb == 1 ? amin : amin / sqrt(2.0);
-	return k;
+	for (int x = 0; x < g->dim; x++)
+		amin = fmin(amin, g->a[x]);
+	return g->nb == 1 ? amin : amin / sqrt(2.0);
+}
+
+/* Site k of g (x fastest, then y, z; the basis within each cell) into r. */
+static void lattice_site(const lattice *g, size_t k, double r[3])
+{
+	size_t c = k / (size_t)g->nb, M = (size_t)g->M;
+	const double *b = g->basis[k % (size_t)g->nb];
+	double u[3] = {(double)(c % M) + b[0], (double)(c / M % M) + b[1], (double)(c / (M * M)) + b[2]};
+	for (int x = 0; x < 3; x++)
+		r[x] = x < g->dim ? g->off[x] + g->a[x] * u[x] : 0;
 }
 
 void lz_edmd_maxwell(const lz_edmd *e, lz_rng *rng, double *v)
@@ -340,6 +256,8 @@ void lz_edmd_maxwell(const lz_edmd *e, lz_rng *rng, double *v)
 		v[i] *= scale;
 }
 
+static int settle(lz_edmd *e);
+
 int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng)
 {
 	static const double sc[1][3] = {{0.5, 0.5, 0.5}};
@@ -348,70 +266,46 @@ int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng)
 	int M = (int)ceil(pow((double)e->n, 1.0 / e->dim) - 1e-9);
 	while (pow(M, e->dim) < (double)e->n)
 		M++;
-	const double(*basis)[3] = sc;
-	int nb = 1;
-	double near = (e->wall[0] ? e->L - 1 : e->L) / M;
-	if (near < 1 + 1e-9 && e->dim == 3) {
-		basis = fcc;
-		nb = 4;
+	lattice g = lattice_of(e, M, sc, 1);
+	if (lattice_near(&g) < 1 + 1e-9 && e->dim == 3) {
 		M = (int)ceil(cbrt((double)e->n / 4) - 1e-9);
 		while (4.0 * M * M * M < (double)e->n)
 			M++;
+		g = lattice_of(e, M, fcc, 4);
 	}
-	size_t sites = (size_t)nb * (size_t)pow(M, e->dim);
-	double *site = malloc(3 * sites * sizeof *site);
-	double *r = malloc(3 * e->n * sizeof *r), *v = malloc(3 * e->n * sizeof *v);
-	int st = LZ_OK;
-	if (!site || !r || !v) {
-		st = lz_error(LZ_ENOMEM, "no memory for %zu lattice sites", sites);
-	} else {
-		lattice_sites(e, M, basis, nb, site, &near);
-		if (near < 1 + 1e-9) {
-			st = lz_error(LZ_EINVAL,
-			              "%zu particles at packing %.4g do not fit on a lattice: its "
-			              "sites would be %.4f σ apart (< σ); lower the packing or use "
-			              "n = M^%d (or 4M^3 in 3D) for a full lattice",
-			              e->n, e->n * particle_volume(e->dim) / pow(e->L, e->dim), near,
-			              e->dim);
-		} else {
-			/* a random subset of the sites, kept in lattice order */
-			size_t *idx = malloc(sites * sizeof *idx), *pick = malloc(e->n * sizeof *pick);
-			if (!idx || !pick) {
-				st = lz_error(LZ_ENOMEM, "no memory for %zu lattice sites", sites);
-			} else {
-				for (size_t k = 0; k < sites; k++)
-					idx[k] = k;
-				gsl_ran_choose(rng->gsl, pick, e->n, idx, sites, sizeof *idx);
-				double shift[3];
-				for (int a = 0; a < 3; a++)
-					shift[a] = a < e->dim && !e->wall[a] ? e->L * lz_rng_uniform(rng) : 0;
-				for (size_t i = 0; i < e->n; i++)
-					for (int a = 0; a < 3; a++) {
-						double x = site[3 * pick[i] + a] + shift[a];
-						r[3 * i + a] = x < e->L ? x : x - e->L;
-					}
-				lz_edmd_maxwell(e, rng, v);
-				st = lz_edmd_set(e, r, v);
-			}
-			free(idx);
-			free(pick);
+	if (lattice_near(&g) < 1 + 1e-9)
+		return lz_error(LZ_EINVAL, "%zu particles at packing %.4g do not fit on a lattice: "
+		                "its sites would be %.4f σ apart (< σ); lower the packing or use n = "
+		                "M^%d (or 4M^3 in 3D) for a full lattice", e->n,
+		                e->n * particle_volume(e->dim) / pow(e->L, e->dim), lattice_near(&g),
+		                e->dim);
+	/* a random subset of the sites, in lattice order, straight into the records: the
+	 * selection sampling of gsl_ran_choose (each site taken with the chance of the
+	 * places left over the sites left), with its draws, so no array of sites is made
+	 * (10^8 particles fit) */
+	size_t sites = lattice_sites(&g), j = 0;
+	for (size_t k = 0; k < sites && j < e->n; k++)
+		if ((double)(sites - k) * gsl_rng_uniform(rng->gsl) < (double)(e->n - j))
+			lattice_site(&g, k, e->p[j++].r);
+	double shift[3];
+	for (int a = 0; a < 3; a++)
+		shift[a] = a < e->dim && !e->wall[a] ? e->L * lz_rng_uniform(rng) : 0;
+	for (size_t i = 0; i < e->n; i++)
+		for (int a = 0; a < 3; a++) {
+			double x = e->p[i].r[a] + shift[a];
+			e->p[i].r[a] = x < e->L ? x : x - e->L;
 		}
+	double *v = malloc(3 * e->n * sizeof *v);
+	if (!v)
+		return lz_error(LZ_ENOMEM, "no memory for the velocities of %zu particles", e->n);
+	lz_edmd_maxwell(e, rng, v);
+	for (size_t i = 0; i < e->n; i++) {
+		memcpy(e->p[i].v, v + 3 * i, sizeof e->p[i].v);
+		e->p[i].t0 = 0;
+		e->p[i].count = 0;
 	}
-	free(site);
-	free(r);
 	free(v);
-	return st;
-}
-
-/* The cell of position r (inside the box). */
-static uint32_t cell_of(const lz_edmd *e, const double r[3])
-{
-	int cc[3];
-	for (int a = 0; a < 3; a++) {
-		int x = (int)floor(r[a] / e->w[a]);
-		cc[a] = x < 0 ? 0 : x >= e->m[a] ? e->m[a] - 1 : x;
-	}
-	return cell_index(e, cc);
+	return settle(e);
 }
 
 /* Check and copy particle i's state: NaN, outside the box, beyond a wall contact. */
@@ -449,25 +343,32 @@ int lz_edmd_set(lz_edmd *e, const double *r, const double *v)
 		if (st)
 			return st;
 	}
+	return settle(e);
+}
+
+/* The records set: into the cells, checked for overlaps, started. */
+static int settle(lz_edmd *e)
+{
 	lz_edmd_cell_clear(e);
 	for (size_t i = e->n; i-- > 0;)
-		lz_edmd_cell_insert(e, (uint32_t)i, cell_of(e, e->p[i].r));
+		lz_edmd_cell_insert(e, (uint32_t)i, lz_edmd_cell_of(e, e->p[i].r));
 	e->now = 0;
 	uint32_t a, b;
 	double over = lz_edmd_max_overlap(e, &a, &b);
 	if (over > 1e-10)
 		return lz_error(LZ_EINVAL, "particles %u and %u overlap: their centres are "
 		                "%.10g σ apart, less than σ = 1 (overlap %.3g)", a, b, 1 - over, over);
-	lz_edmd_start(e);
-	return LZ_OK;
+	return lz_edmd_start(e);
 }
 
-void lz_edmd_start(lz_edmd *e)
+int lz_edmd_start(lz_edmd *e)
 {
+	if (e->lists)
+		return lz_edmd_list_start(e);
 	lz_edmd_cell_clear(e);
 	for (size_t i = e->n; i-- > 0;) {
 		e->p[i].t0 = 0;
-		lz_edmd_cell_insert(e, (uint32_t)i, cell_of(e, e->p[i].r));
+		lz_edmd_cell_insert(e, (uint32_t)i, lz_edmd_cell_of(e, e->p[i].r));
 	}
 	e->now = 0;
 	e->since_rebase = 0;
@@ -475,11 +376,12 @@ void lz_edmd_start(lz_edmd *e)
 	lz_edmd_reset_counts(e);
 	for (size_t i = 0; i < e->n; i++)
 		lz_edmd_predict(e, (uint32_t)i);
+	return LZ_OK;
 }
 
 void lz_edmd_reset_counts(lz_edmd *e)
 {
-	e->events = e->collisions = e->crossings = e->bounces = e->stale = 0;
+	e->events = e->collisions = e->crossings = e->bounces = e->stale = e->rebuilds = 0;
 	e->virial = 0;
 	e->coll_mark = 0;
 	e->t_reset = lz_edmd_time(e);

@@ -25,6 +25,7 @@ lz_edmd_sample lz_edmd_measure(const lz_edmd *e)
 		.crossings = e->crossings,
 		.bounces = e->bounces,
 		.stale = e->stale,
+		.rebuilds = e->rebuilds,
 	};
 	double n = (double)e->n, d = e->dim;
 	if (s.time > 0) {
@@ -161,6 +162,7 @@ int lz_edmd_blocks_plan(lz_edmd *e, size_t blocks, const lz_edmd_plan *plan,
 		r->crossings += b.crossings;
 		r->bounces += b.bounces;
 		r->stale += b.stale;
+		r->rebuilds += b.rebuilds;
 		st = guard(e, &s, r);
 		if (st == LZ_OK && plan->observe)
 			st = plan->observe(e, plan->arg);
@@ -325,12 +327,13 @@ int lz_edmd_gr_add(const lz_edmd *e, double rmax, gsl_histogram *h)
 		lz_edmd_state(e, &e->p[i], e->now, r + 3 * i, v);
 	}
 	double lo2 = lo > 0 ? lo * lo : 0, hi2 = hi * hi;
-	/* a pair closer than rmax is at most ceil(rmax / w) cells apart on every axis;
-	 * on a periodic axis the 2·reach + 1 cells must be distinct, or a pair would be
-	 * met twice */
+	/* a pair closer than rmax is at most ceil((rmax + 2 stray) / w) cells apart on
+	 * every axis (a particle strays from its cell by at most lz_edmd_stray); on a
+	 * periodic axis the 2·reach + 1 cells must be distinct, or a pair would be met
+	 * twice */
 	int reach[3] = {0, 0, 0}, wraps = 0;
 	for (int a = 0; a < e->dim; a++) {
-		reach[a] = (int)ceil(rmax / e->w[a]);
+		reach[a] = (int)ceil((rmax + 2 * lz_edmd_stray(e)) / e->w[a]);
 		if (2 * reach[a] + 1 > e->m[a]) {
 			if (!e->wall[a])
 				wraps = 1;

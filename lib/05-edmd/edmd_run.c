@@ -14,17 +14,24 @@ void lz_edmd_sync(lz_edmd *e)
 		lz_edmd_advance(e, &e->p[i], e->now);
 }
 
-void lz_edmd_rebase(lz_edmd *e)
+int lz_edmd_rebase(lz_edmd *e)
 {
 	lz_edmd_sync(e);
 	double now = e->now;
 	for (size_t i = 0; i < e->n; i++)
 		e->p[i].t0 = 0;
-	lz_heap_shift(e->heap, now);
+	if (e->cal) {
+		int st = lz_calendar_shift(e->cal, now);
+		if (st != LZ_OK)
+			return st;
+	} else {
+		lz_heap_shift(e->heap, now);
+	}
 	e->t_base += now;
 	e->now = 0;
 	e->since_rebase = 0;
 	e->rebases++;
+	return LZ_OK;
 }
 
 void lz_edmd_set_time(lz_edmd *e, double t)
@@ -54,7 +61,15 @@ int lz_edmd_sort(lz_edmd *e)
 	for (size_t i = 0; i < e->n; i++)
 		if (e->ev[i].partner >= 0)
 			e->ev[i].partner = (int32_t)to[e->ev[i].partner];
-	lz_heap_renumber(e->heap, to);
+	if (e->cal ? lz_calendar_renumber(e->cal, to) != LZ_OK
+	           : (lz_heap_renumber(e->heap, to), 0)) {
+		free(to);
+		return LZ_ENOMEM;
+	}
+	if (e->lists && lz_edmd_list_renumber(e, to) != LZ_OK) {
+		free(to);
+		return LZ_ENOMEM;
+	}
 	/* apply the permutation in place, cycle by cycle: each swap puts one particle
 	 * where it belongs */
 	for (uint32_t i = 0; i < e->n; i++)
@@ -138,23 +153,30 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop)
 			int st = check_stall(e, window);
 			if (st)
 				return st;
-			if (e->rebase_auto)
-				lz_edmd_rebase(e);
+			if (e->rebase_auto && (st = lz_edmd_rebase(e)) != LZ_OK)
+				return st;
 			e->since_rebase = 0;
 			e->coll_mark = e->collisions;
 			if (e->sort_every && e->rebases % e->sort_every == 0 && (st = lz_edmd_sort(e)))
 				return st;
 		}
-		if (e->t_base + lz_heap_top_t(e->heap) > t_stop) {
+		if (e->t_base + lz_edmd_first_t(e) > t_stop) {
 			e->now = t_stop - e->t_base;
 			lz_edmd_sync(e);
 			return LZ_OK;
 		}
-		if (e->prefetch)
-			lz_edmd_fetch_ahead(e);
-		if (lz_edmd_step(e) < 0)
+		if (e->prefetch) {
+			if (e->lists)
+				lz_edmd_list_fetch_ahead(e);
+			else
+				lz_edmd_fetch_ahead(e);
+		}
+		int st = lz_edmd_next(e);
+		if (st < 0)
 			return lz_error(LZ_EPHYS, "nothing left to happen at t = %.10g: every "
 			                "particle is at rest or alone on its path", lz_edmd_time(e));
+		if (st > 0)
+			return st;
 		e->since_rebase++;
 	}
 	return LZ_OK;
@@ -224,9 +246,9 @@ static int audit_clocks(const lz_edmd *e, uint32_t i)
 	if (p->t0 > e->now + slack)
 		return lz_error(LZ_EDOM, "particle %u: its clock t0 = %.17g is ahead of now = %.17g",
 		                i, p->t0, e->now);
-	if (!lz_heap_contains(e->heap, i))
-		return lz_error(LZ_EDOM, "particle %u has no event in the heap", i);
-	double t = lz_heap_key(e->heap, i);
+	if (e->cal ? !lz_calendar_contains(e->cal, i) : !lz_heap_contains(e->heap, i))
+		return lz_error(LZ_EDOM, "particle %u has no event in the queue", i);
+	double t = e->cal ? lz_calendar_key(e->cal, i) : lz_heap_key(e->heap, i);
 	if (t < e->now - slack)
 		return lz_error(LZ_EDOM, "particle %u: its event at %.17g is before now = %.17g", i,
 		                t, e->now);
@@ -238,12 +260,12 @@ static int audit_clocks(const lz_edmd *e, uint32_t i)
 
 int lz_edmd_audit(const lz_edmd *e)
 {
-	int st = lz_heap_audit(e->heap);
+	int st = e->cal ? lz_calendar_audit(e->cal) : lz_heap_audit(e->heap);
 	if (st)
 		return st;
-	if (e->heap->n != e->n)
-		return lz_error(LZ_EDOM, "the heap holds %zu events for %zu particles", e->heap->n,
-		                e->n);
+	size_t queued = e->cal ? e->cal->n : e->heap->n;
+	if (queued != e->n)
+		return lz_error(LZ_EDOM, "the queue holds %zu events for %zu particles", queued, e->n);
 	size_t listed = 0;
 	for (size_t c = 0; c < e->ncells; c++) {
 		int32_t second = e->list[c].head >= 0 ? e->next[e->list[c].head] : -1;
@@ -262,14 +284,18 @@ int lz_edmd_audit(const lz_edmd *e)
 	if (listed != e->n)
 		return lz_error(LZ_EDOM, "the cell lists hold %zu particles, not %zu", listed, e->n);
 	for (uint32_t i = 0; i < e->n; i++)
-		if ((st = audit_clocks(e, i)) || (st = audit_place(e, i, 1e-9)))
+		if ((st = audit_clocks(e, i)) || (!e->lists && (st = audit_place(e, i, 1e-9))))
 			return st;
-	return LZ_OK;
+	return e->lists ? lz_edmd_list_audit(e) : LZ_OK;
 }
 
 double lz_edmd_bytes(const lz_edmd *e)
 {
-	double per = sizeof(lz_edmd_particle) + sizeof(lz_edmd_event) + sizeof(lz_heap_node) +
-	             sizeof(uint32_t) /* heap pos */ + sizeof(int32_t) /* next */;
+	double queue = e->cal ? sizeof(double) + 2 * sizeof(uint32_t) /* key, links */
+	                        + (e->cal->days + 1) * sizeof(uint32_t) / (double)e->n
+	                      : sizeof(lz_heap_node) + sizeof(uint32_t) /* node, pos */;
+	double per = sizeof(lz_edmd_particle) + sizeof(lz_edmd_event) + queue +
+	             sizeof(int32_t) /* next */;
+	per += e->lists ? lz_edmd_list_bytes(e) : 0;
 	return per + (double)e->ncells * sizeof(lz_edmd_list) / (double)e->n;
 }

@@ -122,7 +122,7 @@ static lz_edmd *copy_system(const lz_edmd *s)
 {
 	lz_edmd_params q = {s->dim, s->n, 0, s->restitution, s->g,
 	                    s->wall[0] ? (s->wall[1] ? LZ_EDMD_WALLS_BOX : LZ_EDMD_WALLS_X)
-	                               : LZ_EDMD_WALLS_NONE, s->m[0]};
+	                               : LZ_EDMD_WALLS_NONE, s->m[0], LZ_EDMD_CELLS, 0, 0};
 	double v1 = s->dim == 3 ? M_PI / 6 : M_PI / 4;
 	q.packing = (double)s->n * v1 / pow(s->L, s->dim);
 	lz_edmd *e = lz_edmd_alloc(&q);

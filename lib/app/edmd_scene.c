@@ -26,7 +26,7 @@ int lz_edmd_scene_particles(const lz_scene *s, const lz_config *c, size_t *n)
 	return LZ_OK;
 }
 
-static lz_edmd_params scene_params(const lz_scene *s, size_t n)
+static lz_edmd_params scene_params(const lz_scene *s, size_t n, const lz_edmd_params *engine)
 {
 	static const int walls[] = {LZ_EDMD_WALLS_NONE, LZ_EDMD_WALLS_X, LZ_EDMD_WALLS_BOX};
 	lz_edmd_params p = {
@@ -38,14 +38,19 @@ static lz_edmd_params scene_params(const lz_scene *s, size_t n)
 		.walls = walls[lz_scene_enum(s, "walls")],
 		.cells = (int)lz_scene_int(s, "cells"),
 	};
+	if (engine) {
+		p.neighbours = engine->neighbours;
+		p.shell = engine->shell;
+		p.queue = engine->queue;
+	}
 	return p;
 }
 
 /* The system of the scene (not yet placed), or NULL with the library's message at the
  * key to blame. */
-lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n)
+lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n, const lz_edmd_params *engine)
 {
-	lz_edmd_params p = scene_params(s, n);
+	lz_edmd_params p = scene_params(s, n, engine);
 	lz_edmd *e = lz_edmd_alloc(&p);
 	if (e)
 		return e;
@@ -53,6 +58,9 @@ lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n)
 	const char *key = p.packing >= close ? "packing"
 	                  : p.gravity > 0 && p.walls == LZ_EDMD_WALLS_NONE ? "gravity"
 	                  : lz_scene_given(s, "cells") ? "cells"
+	                  : engine && lz_scene_given(s, "shell") ? "shell"
+	                  : engine && lz_scene_given(s, "queue") ? "queue"
+	                  : engine && lz_scene_given(s, "neighbours") ? "neighbours"
 	                  : lz_scene_has(s, "config") ? "config" : "n";
 	lz_scene_fail(s, key, "%s", lz_error_message());
 	return NULL;

@@ -58,9 +58,10 @@ int lz_edmd_scene_particles(const lz_scene *s, const lz_config *c, size_t *n);
  * LZ_EINVAL at the key `config`. */
 int lz_edmd_scene_place_config(const lz_scene *s, lz_edmd *e, const lz_config *c, lz_rng *rng);
 
-/* The system of the scene for n particles (not yet placed), or NULL with the
- * library's message at the key to blame. O(n + cells). */
-lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n);
+/* The system of the scene for n particles (not yet placed), its neighbours, shell and
+ * queue from `engine` (NULL: cells and the binary heap), or NULL with the library's
+ * message at the key to blame. O(n + cells). */
+lz_edmd *lz_edmd_scene_system(const lz_scene *s, size_t n, const lz_edmd_params *engine);
 
 /* Place e's particles: from the config file (velocities from it or Maxwell's), or on a
  * lattice. LZ_OK or an error at the key to blame. O(n log n). */

@@ -62,6 +62,19 @@ static const lz_key keys[] = {
 	{.name = "sample", .type = LZ_KEY_REAL, .def = "2", .min = 0, .max = 1e9, .min_open = 1,
 	 .unit = "per particle",
 	 .help = "events per particle between g(r) samples, msd rows and temperature rows"},
+	{.name = "neighbours", .type = LZ_KEY_ENUM, .def = "auto", .choices = "auto|cells|list",
+	 .help = "where a prediction looks for partners: the 3^dim cells around the particle, "
+	         "or its list of the particles within the shell (rebuilt when it strays half "
+	         "the shell's width beyond σ); auto: lists in 3D from packing 0.35, in 2D "
+	         "from 0.5, where they were measured faster (lesson 05 §10)"},
+	{.name = "shell", .type = LZ_KEY_REAL, .def = "", .min = 1, .max = 4, .min_open = 1,
+	 .unit = "σ",
+	 .help = "neighbours = list: the shell S of a list; unset: 1.4 (3D) or 1.8 (2D) in "
+	         "a dense fluid, wider below (lz_edmd_list_shell)"},
+	{.name = "queue", .type = LZ_KEY_ENUM, .def = "auto", .choices = "auto|heap|heap4|calendar",
+	 .help = "what orders the events: the binary heap (the assignment), a 4-ary heap or "
+	         "a calendar queue (both with lists only); auto: the calendar with lists, "
+	         "the heap with cells"},
 	{.name = "sort", .type = LZ_KEY_BOOL, .def = "no",
 	 .help = "renumber the particles cell by cell at every re-base (near in space = "
 	         "near in "
@@ -72,6 +85,20 @@ static const lz_key keys[] = {
 };
 
 /* ---- the scene ---- */
+
+/* The engine the scene asks for: neighbours (auto: lz_edmd_list_pays), shell, queue. */
+static lz_edmd_params engine_of(const lz_scene *s, size_t n)
+{
+	static const int queues[] = {LZ_EDMD_QUEUE_AUTO, LZ_EDMD_HEAP, LZ_EDMD_HEAP4,
+	                             LZ_EDMD_CALENDAR};
+	int dim = (int)lz_scene_int(s, "dim"), k = lz_scene_enum(s, "neighbours");
+	lz_edmd_params p = {0};
+	p.neighbours = k == 1 ? LZ_EDMD_CELLS : k == 2 ? LZ_EDMD_LIST
+	               : lz_edmd_list_pays(dim, n, lz_scene_real(s, "packing"));
+	p.shell = lz_scene_has(s, "shell") ? lz_scene_real(s, "shell") : 0;
+	p.queue = queues[lz_scene_enum(s, "queue")];
+	return p;
+}
 
 /* The bits of observe, or -1 with lz_error naming the bad word. */
 static int parse_observe(const char *text)
@@ -128,6 +155,9 @@ static int check_keys(const lz_scene *s)
 	if (!obs && lz_scene_real(s, "restitution") == 1 && lz_scene_given(s, "sample"))
 		return lz_scene_fail(s, "sample", "sample is given but nothing is sampled: add "
 		                     "observe = gr or msd, or restitution < 1 (temperature.dat)");
+	if (lz_scene_given(s, "shell") && lz_scene_enum(s, "neighbours") == 1)
+		return lz_scene_fail(s, "shell", "shell is given but neighbours = cells: a shell "
+		                     "belongs to neighbours = list (or auto)");
 	if ((obs & OBS_MSD) && lz_scene_given(s, "sort") && lz_scene_bool(s, "sort"))
 		return lz_scene_fail(s, "sort", "sort = yes renumbers the particles, which the "
 		                     "mean-square displacement cannot follow: say sort = no, or "
@@ -146,7 +176,8 @@ static int check(const lz_scene *s)
 		return lz_scene_fail(s, "config", "%s", lz_error_message());
 	size_t n = 0;
 	status = lz_edmd_scene_particles(s, &c, &n);
-	lz_edmd *e = status == LZ_OK ? lz_edmd_scene_system(s, n) : NULL;
+	lz_edmd_params engine = engine_of(s, n);
+	lz_edmd *e = status == LZ_OK ? lz_edmd_scene_system(s, n, &engine) : NULL;
 	if (status == LZ_OK && !e)
 		status = LZ_EINVAL;
 	if (status == LZ_OK && (scene_observe(s) & OBS_GR) && lz_scene_real(s, "gr_range") > e->L / 2)
@@ -439,6 +470,10 @@ static void summarise(const lz_scene *s, const lz_edmd *e, const watch *w,
 	double watch_bytes = (w->track ? 6 * sizeof(double) : 0) + (w->gr ? 3 * sizeof(double) : 0);
 	lz_json_int(j, "n_run", (long long)e->n);
 	lz_json_num(j, "box_side", e->L);
+	lz_json_str(j, "neighbours_run", e->lists ? "list" : "cells");
+	if (e->lists)
+		lz_json_num(j, "shell_run", e->lists->shell);
+	lz_json_str(j, "queue_run", e->cal ? "calendar" : e->heap->arity == 4 ? "heap4" : "heap");
 	lz_json_int(j, "cells_per_side", e->m[0]);
 	lz_json_num(j, "cells_per_particle", (double)e->ncells / n);
 	lz_json_err(j, "Z", r->Z, r->Z_err);
@@ -456,6 +491,7 @@ static void summarise(const lz_scene *s, const lz_edmd *e, const watch *w,
 	lz_json_int(j, "events_run", (long long)r->events);
 	lz_json_int(j, "collisions", (long long)r->collisions);
 	lz_json_int(j, "cell_crossings", (long long)r->crossings);
+	lz_json_int(j, "list_rebuilds", (long long)r->rebuilds);
 	lz_json_int(j, "wall_bounces", (long long)r->bounces);
 	lz_json_int(j, "stale_events", (long long)r->stale);
 	lz_json_num(j, "energy_rel_drift", r->energy_rel_drift);
@@ -618,7 +654,8 @@ static int run(const lz_scene *s, lz_run *run)
 	if (status == LZ_OK)
 		status = lz_edmd_scene_particles(s, &c, &n);
 	lz_config_free(&c);
-	lz_edmd *e = status == LZ_OK ? lz_edmd_scene_system(s, n) : NULL;
+	lz_edmd_params engine = engine_of(s, n);
+	lz_edmd *e = status == LZ_OK ? lz_edmd_scene_system(s, n, &engine) : NULL;
 	if (status == LZ_OK && !e)
 		status = LZ_EINVAL;
 	watch w = {0};

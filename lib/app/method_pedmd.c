@@ -109,7 +109,7 @@ static lz_edmd *scene_system(const lz_scene *s, int quiet, int *status)
 	if (*status == LZ_OK)
 		*status = lz_edmd_scene_particles(s, &c, &n);
 	lz_config_free(&c);
-	lz_edmd *e = *status == LZ_OK ? lz_edmd_scene_system(s, n) : NULL;
+	lz_edmd *e = *status == LZ_OK ? lz_edmd_scene_system(s, n, NULL) : NULL;
 	if (!e) {
 		*status = *status ? *status : LZ_EINVAL;
 		return NULL;
@@ -182,7 +182,7 @@ static int check(const lz_scene *s)
 	if (lz_scene_has(s, "config") || lz_scene_real(s, "packing") <= 0)
 		return LZ_OK;
 	lz_edmd_params p = {dim, (size_t)lz_scene_int(s, "n"), lz_scene_real(s, "packing"), 1, 0,
-	                    LZ_EDMD_WALLS_NONE, (int)lz_scene_int(s, "cells")};
+	                    LZ_EDMD_WALLS_NONE, (int)lz_scene_int(s, "cells"), LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	if (!e)
 		return LZ_OK;  /* the run names the key to blame */

@@ -678,7 +678,7 @@ static double particle_volume(int dim) { return dim == 3 ? M_PI / 6 : M_PI / 4; 
 /* A system of n particles in a box of side L (the packing that gives it). */
 static lz_edmd *box_of_side(int dim, size_t n, double L, int walls, double g, double er)
 {
-	lz_edmd_params p = {dim, n, n * particle_volume(dim) / pow(L, dim), er, g, walls, 0};
+	lz_edmd_params p = {dim, n, n * particle_volume(dim) / pow(L, dim), er, g, walls, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	LZ_REQUIRE(e != NULL, "lz_edmd_alloc(dim %d, n %zu, L %g): %s", dim, n, L,
 	              lz_error_message());
@@ -696,7 +696,7 @@ static void place(lz_edmd *e, const double *r, const double *v)
 static lz_edmd *lattice_system(int dim, size_t n, double eta, double er, int walls, double g,
                                unsigned long seed)
 {
-	lz_edmd_params p = {dim, n, eta, er, g, walls, 0};
+	lz_edmd_params p = {dim, n, eta, er, g, walls, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	LZ_REQUIRE(e != NULL, "lz_edmd_alloc(dim %d, n %zu, packing %g): %s", dim, n, eta,
 	              lz_error_message());
@@ -713,7 +713,7 @@ static lz_edmd *lattice_system(int dim, size_t n, double eta, double er, int wal
  * zero total momentum, kT = 1. */
 static lz_edmd *random_gas(int dim, size_t n, double eta, unsigned long seed)
 {
-	lz_edmd_params p = {dim, n, eta, 1.0, 0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {dim, n, eta, 1.0, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	LZ_REQUIRE(e != NULL, "lz_edmd_alloc(dim %d, n %zu, packing %g): %s", dim, n, eta,
 	              lz_error_message());
@@ -1134,7 +1134,7 @@ END_TEST
  * multiples of L/m). */
 static lz_edmd *box_with_cells(size_t n, double L, int m)
 {
-	lz_edmd_params p = {3, n, n * particle_volume(3) / (L * L * L), 1, 0, LZ_EDMD_WALLS_NONE, m};
+	lz_edmd_params p = {3, n, n * particle_volume(3) / (L * L * L), 1, 0, LZ_EDMD_WALLS_NONE, m, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	LZ_REQUIRE(e != NULL, "lz_edmd_alloc(n %zu, L %g, %d cells per side): %s", n, L, m,
 	      lz_error_message());

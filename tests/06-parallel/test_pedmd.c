@@ -31,7 +31,7 @@ static const lz_pedmd_params PARAMS = {0.05, 0.5, 0, 0.1, 1, 16, 0};
 static lz_edmd *gas(int dim, size_t n, double eta, int walls, double g, double restitution,
                     unsigned long seed)
 {
-	lz_edmd_params p = {dim, n, eta, restitution, g, walls, 0};
+	lz_edmd_params p = {dim, n, eta, restitution, g, walls, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	LZ_REQUIRE(e, "lz_edmd_alloc(%dD, N = %zu, η = %g): %s", dim, n, eta, lz_error_message());
 	lz_rng *rng = lz_rng_alloc("mt19937", seed);
@@ -48,7 +48,7 @@ static lz_edmd *placed(int dim, int m, double L, int walls, size_t n, const doub
                        const double *v)
 {
 	double v1 = dim == 3 ? M_PI / 6 : M_PI / 4;
-	lz_edmd_params p = {dim, n, (double)n * v1 / pow(L, dim), 1, 0, walls, m};
+	lz_edmd_params p = {dim, n, (double)n * v1 / pow(L, dim), 1, 0, walls, m, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	LZ_REQUIRE(e, "lz_edmd_alloc(%dD box of side %g, %d cells a side): %s", dim, L, m,
 	      lz_error_message());

@@ -28,7 +28,7 @@ static double particle_volume(int dim) { return dim == 3 ? M_PI / 6 : M_PI / 4; 
 
 static lz_edmd_params params(int dim, size_t n, double eta)
 {
-	return (lz_edmd_params){dim, n, eta, 1.0, 0, LZ_EDMD_WALLS_NONE, 0};
+	return (lz_edmd_params){dim, n, eta, 1.0, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 }
 
 static lz_edmd *alloc_ok(const lz_edmd_params *p)

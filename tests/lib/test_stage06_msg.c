@@ -195,7 +195,7 @@ END_TEST
 
 static lz_edmd *gas(int dim, size_t n, double eta, unsigned long seed)
 {
-	lz_edmd_params p = {dim, n, eta, 1, 0, LZ_EDMD_WALLS_NONE, 0};
+	lz_edmd_params p = {dim, n, eta, 1, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	lz_rng *rng = lz_rng_alloc("mt19937", seed);
 	LZ_REQUIRE(e && rng && lz_edmd_place_lattice(e, rng) == LZ_OK, "a gas: %s",
@@ -287,7 +287,7 @@ END_TEST
  * happen where the disks are. */
 static lz_edmd *sediment(size_t n)
 {
-	lz_edmd_params p = {2, n, 0.15, 1, 1.0, LZ_EDMD_WALLS_BOX, 0};
+	lz_edmd_params p = {2, n, 0.15, 1, 1.0, LZ_EDMD_WALLS_BOX, 0, LZ_EDMD_CELLS, 0, 0};
 	lz_edmd *e = lz_edmd_alloc(&p);
 	double *r = calloc(3 * n, sizeof *r), *v = calloc(3 * n, sizeof *v);
 	lz_rng *rng = lz_rng_alloc("mt19937", 5);

@@ -51,11 +51,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lz/calendar.h"
 #include "lz/heap.h"
 #include "lz/rng.h"
 
 /* ev.partner of a particle for which nothing will ever happen (at rest, alone). */
 #define LZ_EDMD_NONE INT32_MIN
+/* ev.partner of a particle that reaches the edge of its skin (neighbour lists: its
+ * list is built again then). */
+#define LZ_EDMD_SHELL (-7)
 /* Faces of a cell: face f = 2·axis + up (up = 1 towards larger coordinates). A face
  * event is stored as partner = LZ_EDMD_FACE(f) = -1 - f, a negative number. */
 #define LZ_EDMD_FACE(f) (-1 - (int32_t)(f))
@@ -77,6 +81,15 @@
 #define LZ_EDMD_CLOSE_2D 0.90689968211710892
 
 enum { LZ_EDMD_WALLS_NONE, LZ_EDMD_WALLS_X, LZ_EDMD_WALLS_BOX };
+
+/* Where a prediction looks for partners (params.neighbours): the 3^dim cells around
+ * the particle, or its own list of neighbours (see "Neighbour lists" below). */
+enum { LZ_EDMD_CELLS, LZ_EDMD_LIST };
+
+/* What orders the events (params.queue): automatic (the calendar with lists, the heap
+ * with cells), the graded binary heap (lz/heap.h), its 4-ary variant, or a calendar
+ * queue (lz/calendar.h). The last two are the library's, for lists only. */
+enum { LZ_EDMD_QUEUE_AUTO, LZ_EDMD_HEAP, LZ_EDMD_HEAP4, LZ_EDMD_CALENDAR };
 
 /* A particle: 64 bytes, one cache line. */
 typedef struct {
@@ -111,8 +124,15 @@ typedef struct {
 	double restitution;  /* between particles, in (0, 1]; walls are elastic */
 	double gravity;      /* g >= 0 along -x (needs walls on x) */
 	int walls;           /* LZ_EDMD_WALLS_NONE, _X (walls at x = 0 and L), _BOX */
-	int cells;           /* cells per side, 0 = automatic (lz_edmd_auto_cells) */
+	int cells;           /* cells per side, 0 = automatic (lz_edmd_auto_cells; with
+	                        lists, lz_edmd_list_cells) */
+	int neighbours;      /* LZ_EDMD_CELLS (0, the default) or LZ_EDMD_LIST */
+	double shell;        /* lists: the shell S > 1 (σ); 0 = automatic
+	                        (lz_edmd_list_shell) */
+	int queue;           /* LZ_EDMD_QUEUE_AUTO (0), _HEAP, _HEAP4 or _CALENDAR */
 } lz_edmd_params;
+
+struct lz_edmd_lists;
 
 typedef struct {
 	int dim;
@@ -131,7 +151,9 @@ typedef struct {
 	                           particle" is "no particle", so a loop may read it */
 	lz_edmd_particle *p;    /* n particles */
 	lz_edmd_event *ev;      /* their next events */
-	lz_heap *heap;          /* particle i keyed by the time of ev[i] */
+	lz_heap *heap;          /* particle i keyed by the time of ev[i] (NULL: cal) */
+	lz_calendar *cal;       /* the same in a calendar (lists only; NULL: heap) */
+	struct lz_edmd_lists *lists;  /* neighbour lists (NULL: cells, the graded loop) */
 	double now;             /* the time of the last event, since the last re-base */
 	double t_base;          /* the time at which now was last set to 0 */
 	uint64_t since_rebase;  /* events since then */
@@ -154,9 +176,24 @@ typedef struct {
 	uint64_t crossings;     /* cell crossings */
 	uint64_t bounces;       /* wall bounces */
 	uint64_t stale;         /* events found stale */
+	uint64_t rebuilds;      /* neighbour lists built again (skin events) */
 	double virial;          /* Σ over collisions of r_ij · Δp_i (> 0), σ·momentum */
 	double t_reset;         /* the absolute time of the last reset */
 } lz_edmd;
+
+/* The particle whose event comes next, and its time, whichever the queue. O(1). */
+static inline uint32_t lz_edmd_first(const lz_edmd *e)
+{
+	return e->cal ? lz_calendar_top(e->cal) : lz_heap_top(e->heap);
+}
+static inline double lz_edmd_first_t(const lz_edmd *e)
+{
+	return e->cal ? lz_calendar_top_t(e->cal) : lz_heap_top_t(e->heap);
+}
+
+/* How far a particle may be from the cell that holds it (σ): 0 with cells (it is in
+ * it), the skin δ with lists (they hold it by its centre). O(1). */
+static inline double lz_edmd_stray(const lz_edmd *e);
 
 /* ---- flight: library, inline (the hot loop calls these) ---- */
 
@@ -225,6 +262,10 @@ void lz_edmd_fetch_ahead(const lz_edmd *e);
  * that crosses it (±L when it wraps, else 0). Precondition: f is not a wall face.
  * O(1). */
 uint32_t lz_edmd_cell_across(const lz_edmd *e, uint32_t c, int f, double *jump);
+
+/* The cell that holds position r (a position a hair outside the box, by round-off,
+ * goes to the nearest cell). O(1). */
+uint32_t lz_edmd_cell_of(const lz_edmd *e, const double r[3]);
 
 /* Cell-list bookkeeping (list and next): take i out of its cell's list
  * (O(particles in the cell)), put it at the head of cell c's list and set p[i].cell =
@@ -322,8 +363,9 @@ int lz_edmd_set(lz_edmd *e, const double *r, const double *v);
 void lz_edmd_maxwell(const lz_edmd *e, lz_rng *rng, double *v);
 
 /* File all particles into their cells, predict every event and fill the heap; now =
- * 0, t0 = 0 for all, counters reset. O(n log n). */
-void lz_edmd_start(lz_edmd *e);
+ * 0, t0 = 0 for all, counters reset (with lists: lz_edmd_list_start). LZ_OK, or
+ * LZ_ENOMEM (lists only). O(n log n). */
+int lz_edmd_start(lz_edmd *e);
 
 /* Run events until `events` more have been carried out or the absolute time reaches
  * t_stop (INFINITY: no limit); at t_stop every particle is brought to t_stop. Re-bases
@@ -339,9 +381,10 @@ int lz_edmd_run(lz_edmd *e, uint64_t events, double t_stop);
 /* Bring every particle to now (t0 = now). O(n). */
 void lz_edmd_sync(lz_edmd *e);
 
-/* lz_edmd_sync, then subtract now from every time (t0, heap keys) and add it to
- * t_base. The heap order is unchanged. O(n). */
-void lz_edmd_rebase(lz_edmd *e);
+/* lz_edmd_sync, then subtract now from every time (t0, the queue's keys) and add it
+ * to t_base. The order of the events is unchanged. LZ_OK, or LZ_ENOMEM (a calendar
+ * that could not be laid out again). O(n). */
+int lz_edmd_rebase(lz_edmd *e);
 
 /* Renumber the particles cell by cell (cells in row-major order), so that particles
  * near in space are near in memory; events, partners, heap and lists follow. O(n +
@@ -377,5 +420,126 @@ int lz_edmd_audit(const lz_edmd *e);
 
 /* Bytes of memory per particle: particles, events, heap, lists and cells. O(1). */
 double lz_edmd_bytes(const lz_edmd *e);
+
+/* ---- neighbour lists (library: params.neighbours = LZ_EDMD_LIST) ----
+ *
+ * In a dense fluid most of the 3^dim·(particles per cell) candidates of a cell
+ * prediction are too far to matter, and the cells are read for nothing. With lists,
+ * a prediction scans only the particle's NEIGHBOURS: the particles whose centres lie
+ * within the shell S of its own (Smallenburg, Eur. Phys. J. E 45, 22 (2022), §2.2;
+ * the neighbour lists of lesson 04, made exact for events). A particle's CENTRE is
+ * where it stood when its list was built; while every particle stays within the skin
+ * δ = (S - 1)/2 of its centre, two particles whose centres are S or more apart stay
+ * at least 1 apart, so the list holds every possible partner. Reaching the edge of
+ * the skin is an event (partner LZ_EDMD_SHELL) in place of the cell crossings: the
+ * list is built again around the particle's position then, from the cells (at least
+ * S wide, holding the particles by their centres). Lists are symmetric — building i's
+ * list takes i off its old neighbours' lists and puts it on its new ones' — so that
+ * whichever of two neighbours changes velocity predicts the pair again, and one event
+ * per particle stays enough. A wall is an event of its own (a wall face, as with
+ * cells) for a particle whose centre lies within δ of the contact; under gravity the
+ * skin is left no later than |v| t + g t²/2 = δ says (a bound, so early at worst).
+ * Positions are wrapped into the box when a list is built, and stray at most δ
+ * outside between. The trade (lesson 05 §10): a wider shell means fewer rebuilds but
+ * more candidates per prediction, and 4 bytes per neighbour.
+ *
+ * Invariants (lz_edmd_list_audit): |r(i) - centre(i)| <= δ at now; the cells hold
+ * every particle by its centre; j is in i's list exactly when i is in j's, and then
+ * their centres are less than S apart — and every such pair is listed. */
+/* A particle's block (list mode): its centre in units of L/65536 on each axis (16 bits:
+ * the particle starts its skin at most a unit off it, 0.007σ at L = 471 — only the
+ * centre's own value matters to the invariants), its neighbour count, its flags (bit
+ * 0: the centre lies within S of a periodic face, so a separation needs the nearest
+ * image; bit 1 + a: within δ of a wall contact on axis a), and room for `cap`
+ * neighbours. A longer list keeps its first cap - 1 in the block and the rest in a
+ * chain of chunks whose first number takes the last slot. */
+typedef struct {
+	uint16_t c[3];
+	uint8_t count, edge;
+	uint32_t nb[];
+} lz_edmd_nbl;
+
+#define LZ_EDMD_CHUNK 7
+typedef struct {
+	uint32_t next;                /* the next chunk of the chain, or UINT32_MAX */
+	uint32_t nb[LZ_EDMD_CHUNK];
+} lz_edmd_chunk;
+
+typedef struct lz_edmd_lists {
+	double shell;        /* S > 1, σ */
+	double skin;         /* δ = (S - 1)/2 */
+	double unit;         /* L / 65536: the step of the centres */
+	uint32_t cap;        /* neighbours a block holds (2 .. 255) */
+	size_t stride;       /* bytes per block: sizeof(lz_edmd_nbl) + 4 cap */
+	unsigned char *block;  /* the n blocks */
+	lz_edmd_chunk *chunk;  /* the chunks of the longer lists */
+	size_t nchunk, capchunk;
+	uint32_t spare;      /* the first free chunk (a list through next) */
+	size_t chunks;       /* chunks in use */
+} lz_edmd_lists;
+
+/* The default shell: the S that the measurements of lesson 05 §10 found fastest at
+ * this packing, 1.5 or narrower in a dense fluid, wider in a dilute one. O(1). */
+double lz_edmd_list_shell(int dim, double packing);
+
+/* The cells per side for lists of shell S in a box of side L: as many as fit at least
+ * S wide, but no more than about 3 per particle (0 when fewer than 3 fit on a periodic
+ * axis). O(1). */
+int lz_edmd_list_cells(int dim, size_t n, double L, double shell);
+
+/* Lists of shell S for system e (its n and L set): room for the neighbours of a random
+ * gas at its density and some more. NULL with lz_error when out of memory. Called by
+ * lz_edmd_alloc. O(n). */
+lz_edmd_lists *lz_edmd_list_alloc(const lz_edmd *e, double shell);
+void lz_edmd_list_free(lz_edmd_lists *l);
+
+/* lz_edmd_start with lists: every centre where its particle is, the cells by centre,
+ * every list built, every particle predicted (the heap filled). LZ_OK, or LZ_ENOMEM
+ * when the lists cannot grow. O(n · neighbours). */
+int lz_edmd_list_start(lz_edmd *e);
+
+/* Predict particle i at now from its list, its skin and, when near one, the walls:
+ * ev[i] and its key in the queue. LZ_OK, or LZ_ENOMEM (a calendar day that cannot
+ * grow). O(neighbours + log n). */
+int lz_edmd_list_predict(lz_edmd *e, uint32_t i);
+
+/* lz_edmd_step with lists: a collision (or a stale one) as with cells; a skin event
+ * builds the particle's list again (rebuilds + 1); a wall face bounces. 0, -1 when
+ * nothing will ever happen, or LZ_ENOMEM (> 0, with lz_error) when a list cannot grow.
+ * O(neighbours + log n); a rebuild O(3^dim · particles per cell + neighbours²). */
+int lz_edmd_list_step(lz_edmd *e);
+
+static inline double lz_edmd_stray(const lz_edmd *e)
+{
+	return e->lists ? e->lists->skin : 0;
+}
+
+/* Whether lists beat cells for n particles at this packing, as lesson 05 §10 measured
+ * (3D from η = 0.35, 2D from 0.5), and the box holds lists of the automatic shell:
+ * LZ_EDMD_LIST or LZ_EDMD_CELLS. O(1). */
+int lz_edmd_list_pays(int dim, size_t n, double packing);
+
+/* One event, whichever the neighbours: lz_edmd_step or lz_edmd_list_step (0, -1, or
+ * an LZ_E code). */
+static inline int lz_edmd_next(lz_edmd *e)
+{
+	return e->lists ? lz_edmd_list_step(e) : lz_edmd_step(e);
+}
+
+/* lz_edmd_fetch_ahead with lists: the next events' records, lists and neighbours. */
+void lz_edmd_list_fetch_ahead(const lz_edmd *e);
+
+/* The invariants above, and every particle in the cell of its centre. LZ_OK or LZ_EDOM
+ * naming the particle. O(n · neighbours). */
+int lz_edmd_list_audit(const lz_edmd *e);
+
+/* Renumber the lists after the particles: particle i becomes to[i]. O(n · cap). */
+int lz_edmd_list_renumber(lz_edmd *e, const uint32_t *to);
+
+/* The mean number of neighbours in a list: the candidates of a prediction. O(n). */
+double lz_edmd_list_mean(const lz_edmd *e);
+
+/* Bytes per particle of the lists: the blocks and the chunks. O(1). */
+double lz_edmd_list_bytes(const lz_edmd *e);
 
 #endif

@@ -43,7 +43,7 @@ typedef struct {
 	double gamma;       /* collision rate per particle, 2 collisions / (n time) */
 	double Z_gamma;     /* the identity: 1 + √(π/T) Γ / (2 dim) */
 	double free_time;   /* mean free time 1/Γ (INFINITY without collisions) */
-	uint64_t events, collisions, crossings, bounces, stale;
+	uint64_t events, collisions, crossings, bounces, stale, rebuilds;
 } lz_edmd_sample;
 
 /* The sample of the counters since the last reset, at now. O(n) (the temperature). */
@@ -55,7 +55,7 @@ typedef struct {
 	double Z, Z_err, gamma, gamma_err, Z_gamma, Z_gamma_err, T, T_err;
 	double free_time;          /* 1 / gamma */
 	double time;               /* simulated time of all blocks */
-	uint64_t events, collisions, crossings, bounces, stale;
+	uint64_t events, collisions, crossings, bounces, stale, rebuilds;
 	double cpu_s;              /* CPU seconds in lz_edmd_run (guards excluded) */
 	double energy_rel_drift;   /* max over block ends of |E/E0 - 1| (E0 at the start) */
 	double momentum_abs_drift; /* max over block ends of |P - P0| */

@@ -1,0 +1,827 @@
+/* edmd_list.c — the neighbour lists of lz/edmd.h: building a particle's list from the
+ * cells, the prediction from a list, the skin event, and the checks. It calls the
+ * cells (edmd_cells.c), the heap and the graded bounce; edmd_lib.c and edmd_run.c call
+ * it, never the other way round. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lz/bigmem.h"
+#include "lz/edmd.h"
+#include "lz/error.h"
+
+#define NONE UINT32_MAX
+
+/* ---- a particle's block: its centre, count, flags and the first cap neighbours ---- */
+
+static inline lz_edmd_nbl *blk(const lz_edmd_lists *l, uint32_t i)
+{
+	return (lz_edmd_nbl *)(l->block + (size_t)i * l->stride);
+}
+
+/* i's centre in σ (exactly: a multiple of the unit). */
+static inline void centre_of(const lz_edmd_lists *l, uint32_t i, double c[3])
+{
+	const lz_edmd_nbl *b = blk(l, i);
+	for (int a = 0; a < 3; a++)
+		c[a] = b->c[a] * l->unit;
+}
+
+/* Where the neighbours of i are: the block itself when they fit, else copied into buf
+ * (the first cap - 1 from the block, the rest from its chain of chunks). Their number
+ * in *n. O(neighbours). */
+static const uint32_t *neighbours(const lz_edmd_lists *l, uint32_t i, uint32_t *buf, int *n)
+{
+	const lz_edmd_nbl *b = blk(l, i);
+	*n = b->count;
+	if (b->count <= l->cap)
+		return b->nb;
+	int k = (int)l->cap - 1;
+	memcpy(buf, b->nb, (size_t)k * sizeof *buf);
+	for (uint32_t h = b->nb[l->cap - 1]; h != NONE; h = l->chunk[h].next)
+		for (int q = 0; q < LZ_EDMD_CHUNK && k < b->count; q++)
+			buf[k++] = l->chunk[h].nb[q];
+	return buf;
+}
+
+/* The slot of i's k-th neighbour (k < count). */
+static uint32_t *slot(const lz_edmd_lists *l, uint32_t i, int k)
+{
+	lz_edmd_nbl *b = blk(l, i);
+	if (b->count <= l->cap || k < (int)l->cap - 1)
+		return &b->nb[k];
+	uint32_t h = b->nb[l->cap - 1];
+	for (k -= (int)l->cap - 1; k >= LZ_EDMD_CHUNK; k -= LZ_EDMD_CHUNK)
+		h = l->chunk[h].next;
+	return &l->chunk[h].nb[k];
+}
+
+/* A chunk from the free ones, or a new one. NONE when out of memory. */
+static uint32_t chunk_new(lz_edmd_lists *l)
+{
+	if (l->spare == NONE) {
+		if (l->nchunk == l->capchunk) {
+			size_t cap = l->capchunk ? 2 * l->capchunk : 256;
+			lz_edmd_chunk *c = realloc(l->chunk, cap * sizeof *c);
+			if (!c || cap >= NONE)
+				return NONE;
+			l->chunk = c;
+			l->capchunk = cap;
+		}
+		l->chunk[l->nchunk].next = NONE;
+		l->spare = (uint32_t)l->nchunk++;
+	}
+	uint32_t h = l->spare;
+	l->spare = l->chunk[h].next;
+	l->chunk[h].next = NONE;
+	l->chunks++;
+	return h;
+}
+
+static void chunk_free(lz_edmd_lists *l, uint32_t h)
+{
+	l->chunk[h].next = l->spare;
+	l->spare = h;
+	l->chunks--;
+}
+
+/* j appended to i's list. LZ_OK, LZ_ENOMEM, or LZ_EDOM past 255 neighbours. */
+static int add(lz_edmd_lists *l, uint32_t i, uint32_t j)
+{
+	lz_edmd_nbl *b = blk(l, i);
+	int n = b->count;
+	if (n == 255)
+		return lz_error(LZ_EDOM, "particle %u would have more than 255 neighbours: the shell "
+		                "%g is too wide for this density", i, l->shell);
+	if (n < (int)l->cap) {
+		b->nb[n] = j;
+	} else if (n == (int)l->cap) {  /* the last slot becomes the chunk chain */
+		uint32_t h = chunk_new(l);
+		if (h == NONE)
+			return lz_error(LZ_ENOMEM, "no memory for the long neighbour lists");
+		l->chunk[h].nb[0] = b->nb[n - 1];
+		l->chunk[h].nb[1] = j;
+		b->nb[n - 1] = h;
+	} else {
+		int k = n - ((int)l->cap - 1);  /* its place in the chain */
+		uint32_t h = b->nb[l->cap - 1];
+		for (; k >= LZ_EDMD_CHUNK; k -= LZ_EDMD_CHUNK) {
+			if (l->chunk[h].next == NONE && k == LZ_EDMD_CHUNK) {
+				uint32_t g = chunk_new(l);
+				if (g == NONE)
+					return lz_error(LZ_ENOMEM, "no memory for the long neighbour lists");
+				l->chunk[h].next = g;
+			}
+			h = l->chunk[h].next;
+		}
+		l->chunk[h].nb[k] = j;
+	}
+	b->count++;
+	return LZ_OK;
+}
+
+/* j taken off i's list: the last neighbour takes its place. */
+static void drop(lz_edmd_lists *l, uint32_t i, uint32_t j)
+{
+	lz_edmd_nbl *b = blk(l, i);
+	int n = b->count, k = 0;
+	while (k < n && *slot(l, i, k) != j)
+		k++;
+	if (k == n)
+		return;
+	*slot(l, i, k) = *slot(l, i, n - 1);
+	if (n - 1 == (int)l->cap) {  /* the chain's one left goes back into the block */
+		uint32_t h = b->nb[l->cap - 1];
+		b->nb[l->cap - 1] = l->chunk[h].nb[0];
+		chunk_free(l, h);
+	} else if (n - 1 > (int)l->cap && (n - (int)l->cap) % LZ_EDMD_CHUNK == 0) {
+		/* the chain's last chunk held only the one moved: it goes */
+		uint32_t h = b->nb[l->cap - 1], before = NONE;
+		while (l->chunk[h].next != NONE) {
+			before = h;
+			h = l->chunk[h].next;
+		}
+		l->chunk[before].next = NONE;
+		chunk_free(l, h);
+	}
+	b->count--;
+}
+
+/* i's list emptied (its chunks freed). */
+static void forget(lz_edmd_lists *l, uint32_t i)
+{
+	lz_edmd_nbl *b = blk(l, i);
+	if (b->count > l->cap)
+		for (uint32_t h = b->nb[l->cap - 1], g; h != NONE; h = g) {
+			g = l->chunk[h].next;
+			chunk_free(l, h);
+		}
+	b->count = 0;
+}
+
+/* ---- sizes ---- */
+
+double lz_edmd_list_shell(int dim, double packing)
+{
+	if (dim == 2)
+		return packing >= 0.45 ? 1.8 : 2.2;
+	return packing >= 0.45 ? 1.4 : packing >= 0.3 ? 1.5 : packing >= 0.15 ? 1.8 : 2.2;
+}
+
+int lz_edmd_list_pays(int dim, size_t n, double packing)
+{
+	double S = lz_edmd_list_shell(dim, packing), v1 = dim == 3 ? M_PI / 6 : M_PI / 4;
+	double L = pow((double)n * v1 / packing, 1.0 / dim);
+	int dense = packing >= (dim == 3 ? 0.35 : 0.5);
+	return dense && L >= 3 * S && L > 4 * S - 2 ? LZ_EDMD_LIST : LZ_EDMD_CELLS;
+}
+
+int lz_edmd_list_cells(int dim, size_t n, double L, double shell)
+{
+	double most = floor(L / shell);
+	double want = ceil(pow(3.0 * (double)n, 1.0 / dim));
+	double m = fmin(most, fmax(want, 3));
+	return m < 3 ? 0 : (int)m;
+}
+
+lz_edmd_lists *lz_edmd_list_alloc(const lz_edmd *e, double shell)
+{
+	lz_edmd_lists *l = calloc(1, sizeof *l);
+	if (!l)
+		return lz_error(LZ_ENOMEM, "no memory for neighbour lists"), NULL;
+	l->shell = shell;
+	l->skin = 0.5 * (shell - 1);
+	l->unit = e->L / 65536;
+	/* room in the block for the mean number of centres within the shell, and two: the
+	 * longer lists go on in chunks */
+	double rho = (double)e->n / pow(e->L, e->dim);
+	double mean = rho * (e->dim == 3 ? 4 * M_PI / 3 * pow(shell, 3) : M_PI * shell * shell);
+	l->cap = (uint32_t)fmax(2, fmin(255, ceil(mean) + 2));
+	l->stride = sizeof(lz_edmd_nbl) + l->cap * sizeof(uint32_t);
+	l->spare = NONE;
+	l->block = lz_bigmem_alloc(e->n * l->stride);
+	if (!l->block) {
+		lz_edmd_list_free(l);
+		return lz_error(LZ_ENOMEM, "no memory for the neighbour lists of %zu particles",
+		                e->n), NULL;
+	}
+	return l;
+}
+
+void lz_edmd_list_free(lz_edmd_lists *l)
+{
+	if (!l)
+		return;
+	lz_bigmem_free(l->block);
+	free(l->chunk);
+	free(l);
+}
+
+double lz_edmd_list_mean(const lz_edmd *e)
+{
+	double sum = 0;
+	for (uint32_t i = 0; i < e->n; i++)
+		sum += blk(e->lists, i)->count;
+	return sum / (double)e->n;
+}
+
+double lz_edmd_list_bytes(const lz_edmd *e)
+{
+	const lz_edmd_lists *l = e->lists;
+	return (double)l->stride + (double)l->nchunk * sizeof *l->chunk / (double)e->n;
+}
+
+/* ---- centres ---- */
+
+/* The flags of a centre c (lz_edmd_nbl.edge). */
+static uint8_t edge_of(const lz_edmd *e, const double c[3])
+{
+	const lz_edmd_lists *l = e->lists;
+	uint8_t f = 0;
+	for (int a = 0; a < e->dim; a++) {
+		if (!e->wall[a])
+			f |= c[a] < l->shell || c[a] > e->L - l->shell;
+		else if (c[a] < 0.5 + l->skin + 1e-9 || c[a] > e->L - 0.5 - l->skin - 1e-9)
+			f |= (uint8_t)(2 << a);
+	}
+	return f;
+}
+
+/* Centre particle i at r (inside the box): the multiple of the unit just below r (the
+ * particle starts at most a unit off it: nothing in the invariants needs the centre to
+ * be where the particle was, only near), its flags and the cell of that centre. */
+static void set_centre(lz_edmd *e, uint32_t i, const double r[3])
+{
+	lz_edmd_lists *l = e->lists;
+	lz_edmd_nbl *b = blk(l, i);
+	double c[3];
+	for (int a = 0; a < 3; a++) {
+		double q = floor(r[a] / l->unit);
+		b->c[a] = (uint16_t)(q < 0 ? 0 : q > 65535 ? 65535 : q);
+		c[a] = b->c[a] * l->unit;
+	}
+	b->edge = edge_of(e, c);
+	e->p[i].cell = lz_edmd_cell_of(e, c);
+}
+
+/* i's position now, wrapped into the box: its new centre, flags and cell. */
+static void recentre(lz_edmd *e, uint32_t i)
+{
+	lz_edmd_particle *p = &e->p[i];
+	for (int a = 0; a < e->dim; a++)
+		if (!e->wall[a]) {
+			p->r[a] -= e->L * floor(p->r[a] / e->L);
+			if (p->r[a] >= e->L)  /* -1e-17 + L rounds to L */
+				p->r[a] = 0;
+		}
+	uint32_t old = p->cell;
+	set_centre(e, i, p->r);
+	if (p->cell != old) {
+		uint32_t c = p->cell;
+		p->cell = old;
+		lz_edmd_cell_remove(e, i);
+		lz_edmd_cell_insert(e, i, c);
+	}
+}
+
+/* Put j on i's list and i on j's. LZ_OK or add's error. */
+static int link_pair(lz_edmd *e, uint32_t i, uint32_t j)
+{
+	int st = add(e->lists, i, j);
+	return st ? st : add(e->lists, j, i);
+}
+
+/* i's neighbours before its list was built again: those that stay on it are still
+ * on theirs (found), the others must take i off theirs. */
+typedef struct {
+	const uint32_t *nb;
+	int n;
+	uint8_t found[255];
+} former;
+
+/* Of the candidates cand[0 .. nc-1] (seen from the cells from[]: i's centre there is
+ * seen[from]), those other than i (and above i when `after`) whose centres lie within
+ * the shell of i's go on i's list, and i on theirs unless they are former neighbours
+ * (f, may be NULL): the distances in one loop without a branch, then the links. LZ_OK
+ * or add's error. */
+static int link_near(lz_edmd *e, uint32_t i, int after, uint32_t *cand, const uint8_t *from,
+                     int nc, const double (*seen)[3], former *f)
+{
+	const lz_edmd_lists *l = e->lists;
+	double S2 = l->shell * l->shell;
+	int nh = 0;
+	for (int q = 0; q < nc; q++) {
+		const uint16_t *cj = blk(l, cand[q])->c;
+		const double *sk = seen[from[q]], u = l->unit;
+		double d0 = cj[0] * u - sk[0], d1 = cj[1] * u - sk[1], d2 = cj[2] * u - sk[2];
+		uint32_t j = cand[q];
+		cand[nh] = j;
+		nh += (d0 * d0 + d1 * d1 + d2 * d2 < S2) & (j != i) & (!after | (j > i));
+	}
+	for (int q = 0; q < nh; q++) {
+		uint32_t j = cand[q];
+		int k = 0;
+		while (f && k < f->n && f->nb[k] != j)
+			k++;
+		int st = f && k < f->n ? (f->found[k] = 1, add(e->lists, i, j)) : link_pair(e, i, j);
+		if (st != LZ_OK)
+			return st;
+	}
+	return LZ_OK;
+}
+
+/* Every j of the block around i's cell (all of them, or only j > i when `after`)
+ * whose centre lies within the shell of i's: linked both ways. The cells' particles
+ * are gathered breadth first — every cell's head, then every cell's second, ... — so
+ * that the reads along different cells' lists overlap instead of waiting on each
+ * other (link_near then takes their distances). LZ_OK or grow's error. */
+static int gather(lz_edmd *e, uint32_t i, int after, former *f)
+{
+	double ci[3];
+	centre_of(e->lists, i, ci);
+	lz_edmd_block b;
+	lz_edmd_block_of(e, e->p[i].cell, &b);
+	int32_t at[27];
+	double seen[27][3];  /* i's centre as seen from each cell of the block */
+	/* on each axis, how far i's centre is from each cell of the block's row: a cell
+	 * farther than the shell on the three axes together holds no neighbour (about a
+	 * quarter of the 27 in 3D), and its particles are not read */
+	double gap[3][3] = {{0}};
+	uint32_t stride[3] = {1, (uint32_t)e->m[0], (uint32_t)e->m[0] * (uint32_t)e->m[1]};
+	for (int a = 0; a < e->dim; a++)
+		for (int x = 0; x < b.n[a]; x++) {
+			double lo = (double)(b.off[a][x] / stride[a]) * e->w[a] + b.shift[a][x];
+			double below = lo - ci[a], above = ci[a] - (lo + e->w[a]);
+			gap[a][x] = below > 0 ? below : above > 0 ? above : 0;
+		}
+	double S2 = e->lists->shell * e->lists->shell;
+	int nk = 0;
+	for (int z = 0; z < b.n[2]; z++)
+		for (int y = 0; y < b.n[1]; y++)
+			for (int x = 0; x < b.n[0]; x++) {
+				double g2 = gap[0][x] * gap[0][x] + gap[1][y] * gap[1][y] + gap[2][z] * gap[2][z];
+				at[nk] = e->list[b.off[0][x] + b.off[1][y] + b.off[2][z]].head;
+				seen[nk][0] = ci[0] - b.shift[0][x];
+				seen[nk][1] = ci[1] - b.shift[1][y];
+				seen[nk][2] = ci[2] - b.shift[2][z];
+				nk += g2 < S2;
+			}
+	uint32_t cand[LZ_EDMD_GATHER];
+	uint8_t from[LZ_EDMD_GATHER];
+	int nc = 0, live = nk, st = LZ_OK;
+	while (live > 0 && st == LZ_OK) {
+		if (nc + nk > LZ_EDMD_GATHER) {  /* crowded cells: link what we have */
+			st = link_near(e, i, after, cand, from, nc, seen, f);
+			nc = 0;
+		}
+		live = 0;
+		for (int k = 0; k < nk; k++) {
+			int32_t j = at[k];
+			cand[nc] = (uint32_t)j;
+			from[nc] = (uint8_t)k;
+			nc += j >= 0;
+			at[k] = e->next[j];  /* next[-1] = -1: a finished list stays finished */
+			live += at[k] >= 0;
+		}
+	}
+	return st == LZ_OK ? link_near(e, i, after, cand, from, nc, seen, f) : st;
+}
+
+/* i's list built again around where it is now. Most of its neighbours stay: they
+ * keep i on their lists, and only those that left take it off theirs (the others'
+ * blocks are not touched). LZ_OK or add's error. */
+static int rebuild(lz_edmd *e, uint32_t i)
+{
+	lz_edmd_lists *l = e->lists;
+	lz_edmd_advance(e, &e->p[i], e->now);
+	uint32_t old[255];
+	former f = {old, 0, {0}};
+	const uint32_t *nb = neighbours(l, i, old, &f.n);
+	if (nb != old)
+		memcpy(old, nb, (size_t)f.n * sizeof *old);
+	memset(f.found, 0, (size_t)f.n);
+	forget(l, i);
+	recentre(e, i);
+	int st = gather(e, i, 0, &f);
+	for (int k = 0; k < f.n && st == LZ_OK; k++)
+		if (!f.found[k])
+			drop(l, old[k], i);
+	return st;
+}
+
+/* The calendar's days sized from the first events: 32 of them a day, at the rate
+ * that the particles' mean time to their first event gives. */
+static int first_days(lz_edmd *e)
+{
+	double sum = 0;
+	size_t k = 0;
+	for (uint32_t i = 0; i < e->n; i++)
+		if (isfinite(e->cal->item[i].key)) {
+			sum += e->cal->item[i].key - e->now;
+			k++;
+		}
+	double width = k > 0 && sum > 0 ? 32 * (sum / k) / (double)k : e->cal->width;
+	return lz_calendar_layout(e->cal, width);
+}
+
+int lz_edmd_list_start(lz_edmd *e)
+{
+	lz_edmd_lists *l = e->lists;
+	lz_edmd_cell_clear(e);
+	for (size_t i = e->n; i-- > 0;) {
+		e->p[i].t0 = 0;
+		set_centre(e, (uint32_t)i, e->p[i].r);
+		lz_edmd_cell_insert(e, (uint32_t)i, e->p[i].cell);
+		blk(l, (uint32_t)i)->count = 0;
+	}
+	free(l->chunk);
+	l->chunk = NULL;
+	l->nchunk = l->capchunk = l->chunks = 0;
+	l->spare = NONE;
+	e->now = 0;
+	e->since_rebase = 0;
+	if (e->cal)
+		lz_calendar_clear(e->cal, 0);
+	else
+		lz_heap_clear(e->heap);
+	lz_edmd_reset_counts(e);
+	for (uint32_t i = 0; i < e->n; i++) {
+		int st = gather(e, i, 1, NULL);
+		if (st != LZ_OK)
+			return st;
+	}
+	for (uint32_t i = 0; i < e->n; i++) {
+		int st = lz_edmd_list_predict(e, i);
+		if (st != LZ_OK)
+			return st;
+	}
+	return e->cal ? first_days(e) : LZ_OK;
+}
+
+/* ---- the prediction ---- */
+
+/* When a particle at offset d from its centre, velocity v, leaves the skin δ: the
+ * positive root of |d + v t| = δ (|d| < δ), computed without cancellation; 0 when it
+ * is out already (round-off), INFINITY at rest. Under gravity g, the earlier time at
+ * which |d| + |v| t + g t²/2 = δ, a bound. */
+static double skin_time(const double d[3], const double v[3], double skin, double g)
+{
+	double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+	double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+	double c = dd - skin * skin;
+	if (c >= 0)
+		return 0;
+	if (g > 0) {
+		double room = skin - sqrt(dd), speed = sqrt(vv);
+		return 2 * room / (speed + sqrt(vv + 2 * g * room));
+	}
+	if (vv == 0)
+		return INFINITY;
+	double b = d[0] * v[0] + d[1] * v[1] + d[2] * v[2];
+	double root = sqrt(b * b - vv * c);
+	return b > 0 ? -c / (b + root) : (root - b) / vv;
+}
+
+/* The earliest wall contact of a particle at r, v (axes whose flag is set): *face. */
+static double wall_time(const lz_edmd *e, uint8_t flags, const double r[3], const double v[3],
+                        int *face)
+{
+	double best = INFINITY;
+	for (int a = 0; a < e->dim; a++) {
+		if (!(flags & (2 << a)))
+			continue;
+		int up;
+		double t;
+		if (a == 0 && e->g > 0) {
+			t = lz_edmd_fall_time(r[0], v[0], e->g, 0.5, e->L - 0.5, &up);
+		} else {
+			up = v[a] > 0;
+			t = v[a] != 0 ? ((up ? e->L - 0.5 : 0.5) - r[a]) / v[a] : INFINITY;
+		}
+		if (t < best) {
+			best = t > 0 ? t : 0;
+			*face = 2 * a + up;
+		}
+	}
+	return best;
+}
+
+/* The earliest collision of i (at ri, vi now) with its neighbours, if before *best.
+ * Two passes without a branch on the data (whether a pair approaches is a coin toss
+ * that a branch would miss half the time): the first keeps the pairs that approach
+ * (b < 0), do not miss (disc > 0) and could close their gap c before *best even head
+ * on (t >= c / 2|b|); the second roots only those. wrap and fall are constants at each
+ * call (always inlined): a scene without gravity pays nothing for it. */
+static inline __attribute__((always_inline)) void
+neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3],
+                 const double vi[3], double *best, lz_edmd_event *ev, int wrap, int fall)
+{
+	const double now = e->now, g = e->g, L = e->L, half = 0.5 * e->L;
+	/* *best may be +INFINITY (a particle at rest alone): 2 b · bound must not be 0 · ∞ */
+	const double bound = *best < 1e300 ? *best : 1e300;
+	typedef double v2 __attribute__((vector_size(16)));
+	typedef long long m2 __attribute__((vector_size(16)));
+	v2 kb[128], kc[128], kd[128];  /* pair k's b, c and disc: kb[k / 2][k % 2] */
+	uint64_t keep[4] = {0, 0, 0, 0};  /* bit k: pair k may collide before the bound */
+	const v2 vnow = {now, now}, vx = {ri[0], ri[0]}, vy = {ri[1], ri[1]}, vz = {ri[2], ri[2]};
+	const v2 wx = {vi[0], vi[0]}, wy = {vi[1], vi[1]}, wz = {vi[2], vi[2]};
+	const v2 one = {1, 1}, zero = {0, 0}, twob = {2 * bound, 2 * bound};
+	const v2 vL = {L, L}, vh = {half, half};
+	for (int k = 0; k < n; k += 2) {
+		const lz_edmd_particle *p = &e->p[nb[k]], *q = &e->p[nb[k + 1 < n ? k + 1 : k]];
+		v2 dt = vnow - (v2){p->t0, q->t0};
+		v2 ux = (v2){p->v[0], q->v[0]}, uy = (v2){p->v[1], q->v[1]}, uz = (v2){p->v[2], q->v[2]};
+		v2 d0 = (v2){p->r[0], q->r[0]} + ux * dt - vx;
+		v2 d1 = (v2){p->r[1], q->r[1]} + uy * dt - vy;
+		v2 d2 = (v2){p->r[2], q->r[2]} + uz * dt - vz;
+		ux -= wx;
+		uy -= wy;
+		uz -= wz;
+		if (fall) {
+			v2 g2 = {g, g};
+			d0 -= 0.5 * g2 * dt * dt;
+			ux -= g2 * dt;
+		}
+		if (wrap) {
+			if (!e->wall[0])
+				d0 -= vL * __builtin_convertvector((d0 < -vh) - (d0 > vh), v2);
+			if (!e->wall[1])
+				d1 -= vL * __builtin_convertvector((d1 < -vh) - (d1 > vh), v2);
+			if (!e->wall[2])
+				d2 -= vL * __builtin_convertvector((d2 < -vh) - (d2 > vh), v2);
+		}
+		v2 b = d0 * ux + d1 * uy + d2 * uz;
+		v2 c = d0 * d0 + d1 * d1 + d2 * d2 - one;
+		v2 disc = b * b - (ux * ux + uy * uy + uz * uz) * c;
+		m2 ok = (b < zero) & (disc > zero) & (c + b * twob < zero);
+		kb[k / 2] = b;
+		kc[k / 2] = c;
+		kd[k / 2] = disc;
+		uint64_t bits = (uint64_t)(ok[0] & 1) | ((uint64_t)(ok[1] & 1) << 1);
+		keep[k / 64] |= (bits & (k + 1 < n ? 3u : 1u)) << (k % 64);
+	}
+	double first = bound;
+	int who = -1;
+	for (int w = 0; w < 4; w++)
+		for (uint64_t m = keep[w]; m; m &= m - 1) {
+			int k = 64 * w + __builtin_ctzll(m);
+			double bk = kb[k / 2][k % 2], ck = kc[k / 2][k % 2], dk = kd[k / 2][k % 2];
+			double cp = 0.5 * (ck + fabs(ck));  /* touching: t = 0 */
+			double t = cp / (-bk + sqrt(dk));
+			int earlier = t < first;
+			who = earlier ? k : who;
+			first = earlier ? t : first;
+		}
+	if (who >= 0) {
+		*best = first;
+		ev->partner = (int32_t)nb[who];
+		ev->pcount = e->p[nb[who]].count;
+	}
+}
+
+int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
+{
+	const lz_edmd_lists *l = e->lists;
+	double ri[3], vi[3], d[3];
+	lz_edmd_state(e, &e->p[i], e->now, ri, vi);
+	centre_of(l, i, d);
+	for (int a = 0; a < 3; a++)
+		d[a] = ri[a] - d[a];
+	double best = skin_time(d, vi, l->skin, e->g);
+	lz_edmd_event ev = {isinf(best) ? LZ_EDMD_NONE : LZ_EDMD_SHELL, 0};
+	uint8_t flags = blk(l, i)->edge;
+	if (flags & ~1u) {
+		int face = 0;
+		double t = wall_time(e, flags, ri, vi, &face);
+		if (t < best) {
+			best = t;
+			ev.partner = LZ_EDMD_FACE(face);
+		}
+	}
+	uint32_t buf[255];
+	int n;
+	const uint32_t *nb = neighbours(l, i, buf, &n);
+	if (e->g > 0)
+		neighbours_first(e, nb, n, ri, vi, &best, &ev, flags & 1, 1);
+	else if (flags & 1)
+		neighbours_first(e, nb, n, ri, vi, &best, &ev, 1, 0);
+	else
+		neighbours_first(e, nb, n, ri, vi, &best, &ev, 0, 0);
+	e->ev[i] = ev;
+	if (e->cal)
+		return lz_calendar_set(e->cal, i, e->now + best);
+	lz_heap *h = e->heap;
+	int in = lz_heap_contains(h, i);
+	if (h->arity == 4)
+		(in ? lz_heap4_update : lz_heap4_push)(h, i, e->now + best);
+	else
+		(in ? lz_heap_update : lz_heap_push)(h, i, e->now + best);
+	return LZ_OK;
+}
+
+/* ---- the event ---- */
+
+/* Ask the memory for the records of i's neighbours (those in its block). A hint. */
+static void fetch_neighbours(const lz_edmd *e, uint32_t i)
+{
+	const lz_edmd_lists *l = e->lists;
+	const lz_edmd_nbl *b = blk(l, i);
+	for (int k = 0, n = b->count < l->cap ? b->count : (int)l->cap - 1; k < n; k++)
+		__builtin_prefetch(&e->p[b->nb[k]]);
+}
+
+int lz_edmd_list_step(lz_edmd *e)
+{
+	uint32_t i = lz_edmd_first(e);
+	double t = lz_edmd_first_t(e);
+	if (isinf(t))
+		return -1;
+	e->events++;
+	e->now = t;
+	lz_edmd_event ev = e->ev[i];
+	lz_edmd_particle *pi = &e->p[i];
+	if (ev.partner >= 0) {
+		lz_edmd_particle *pj = &e->p[ev.partner];
+		if (pj->count != ev.pcount) {
+			e->stale++;
+			return lz_edmd_list_predict(e, i);
+		}
+		if (e->prefetch)  /* j is predicted after i: its neighbours come meanwhile */
+			fetch_neighbours(e, (uint32_t)ev.partner);
+		lz_edmd_advance(e, pi, t);
+		lz_edmd_advance(e, pj, t);
+		double dr[3], half = 0.5 * e->L;
+		for (int a = 0; a < 3; a++) {  /* the nearest image of a touching pair */
+			dr[a] = pj->r[a] - pi->r[a];
+			if (!e->wall[a])
+				dr[a] -= e->L * ((dr[a] > half) - (dr[a] < -half));
+		}
+		e->virial += lz_edmd_bounce(pi, pj, dr, e->restitution);
+		pi->count++;
+		pj->count++;
+		e->collisions++;
+		int st = lz_edmd_list_predict(e, i);
+		return st ? st : lz_edmd_list_predict(e, (uint32_t)ev.partner);
+	}
+	if (ev.partner == LZ_EDMD_SHELL) {
+		int st = rebuild(e, i);
+		if (st != LZ_OK)
+			return st;
+		e->rebuilds++;
+	} else {  /* a wall */
+		int f = -1 - ev.partner, a = f / 2;
+		lz_edmd_advance(e, pi, t);
+		pi->r[a] = f % 2 ? e->L - 0.5 : 0.5;
+		pi->v[a] = -pi->v[a];
+		pi->count++;
+		e->bounces++;
+	}
+	return lz_edmd_list_predict(e, i);
+}
+
+void lz_edmd_list_fetch_ahead(const lz_edmd *e)
+{
+	const lz_heap *h = e->heap;
+	const lz_edmd_lists *l = e->lists;
+	uint32_t c1, c2;
+	if (e->cal) {
+		if (e->cal->nnear == 0)
+			return;
+		c1 = lz_calendar_second(e->cal);
+		c2 = c1;
+	} else if (h->n < 21) {
+		return;
+	} else if (h->arity == 4) {
+		lz_heap4_next_items(h, &c1, &c2);
+	} else {
+		lz_heap_next_items(h, &c1, &c2);
+	}
+	fetch_neighbours(e, c1);  /* its block was asked for an event ago */
+	int32_t j1 = e->ev[c1].partner;
+	if (j1 >= 0) {
+		__builtin_prefetch(&e->p[j1]);
+		__builtin_prefetch(blk(l, (uint32_t)j1));
+		if (h)
+			lz_heap_prefetch_pos(h, (uint32_t)j1);
+	}
+	/* the event after: its record, event and block */
+	__builtin_prefetch(&e->p[c2]);
+	__builtin_prefetch(&e->ev[c2]);
+	__builtin_prefetch(blk(l, c2));
+}
+
+/* ---- checks ---- */
+
+/* 1 when j is on i's list. */
+static int listed(const lz_edmd_lists *l, uint32_t i, uint32_t j)
+{
+	uint32_t buf[255];
+	int n;
+	const uint32_t *nb = neighbours(l, i, buf, &n);
+	for (int k = 0; k < n; k++)
+		if (nb[k] == j)
+			return 1;
+	return 0;
+}
+
+/* The nearest-image distance of two centres. */
+static double centre_distance(const lz_edmd *e, const double *a, const double *b)
+{
+	double d2 = 0;
+	for (int x = 0; x < e->dim; x++) {
+		double d = b[x] - a[x];
+		if (!e->wall[x])
+			d -= e->L * rint(d / e->L);
+		d2 += d * d;
+	}
+	return sqrt(d2);
+}
+
+static int audit_one(const lz_edmd *e, uint32_t i)
+{
+	const lz_edmd_lists *l = e->lists;
+	double r[3], v[3], ci[3], cj[3], d2 = 0;
+	lz_edmd_state(e, &e->p[i], e->now, r, v);
+	centre_of(l, i, ci);
+	for (int a = 0; a < 3; a++)
+		d2 += (r[a] - ci[a]) * (r[a] - ci[a]);
+	if (sqrt(d2) > l->skin + 1e-9)
+		return lz_error(LZ_EDOM, "particle %u is %.12g from its centre, beyond the skin %g: "
+		                "its list may miss a partner", i, sqrt(d2), l->skin);
+	if (e->p[i].cell != lz_edmd_cell_of(e, ci))
+		return lz_error(LZ_EDOM, "particle %u is filed in cell %u, its centre lies in cell %u",
+		                i, e->p[i].cell, lz_edmd_cell_of(e, ci));
+	if (blk(l, i)->edge != edge_of(e, ci))
+		return lz_error(LZ_EDOM, "particle %u: its edge flags are %u, its centre says %u", i,
+		                blk(l, i)->edge, edge_of(e, ci));
+	uint32_t buf[255];
+	int n;
+	const uint32_t *nb = neighbours(l, i, buf, &n);
+	for (int k = 0; k < n; k++) {
+		uint32_t j = nb[k];
+		if (j >= e->n || j == i || !listed(l, j, i))
+			return lz_error(LZ_EDOM, "particle %u lists %u, which does not list it back (or "
+			                "is not a particle)", i, j);
+		centre_of(l, j, cj);
+		if (centre_distance(e, ci, cj) >= l->shell)
+			return lz_error(LZ_EDOM, "particles %u and %u are listed with their centres "
+			                "%.12g apart, beyond the shell %g", i, j, centre_distance(e, ci, cj),
+			                l->shell);
+	}
+	return LZ_OK;
+}
+
+/* Every pair of centres closer than the shell is listed: a brute-force search over
+ * the cell blocks. */
+static int audit_complete(const lz_edmd *e, uint32_t i)
+{
+	const lz_edmd_lists *l = e->lists;
+	double ci[3], cj[3];
+	centre_of(l, i, ci);
+	lz_edmd_block b;
+	lz_edmd_block_of(e, e->p[i].cell, &b);
+	for (int z = 0; z < b.n[2]; z++)
+		for (int y = 0; y < b.n[1]; y++)
+			for (int x = 0; x < b.n[0]; x++) {
+				uint32_t c = b.off[0][x] + b.off[1][y] + b.off[2][z];
+				for (int32_t j = e->list[c].head; j >= 0; j = e->next[j]) {
+					centre_of(l, (uint32_t)j, cj);
+					double d = centre_distance(e, ci, cj);
+					if ((uint32_t)j != i && d < l->shell && !listed(l, i, (uint32_t)j))
+						return lz_error(LZ_EDOM, "particles %u and %d have centres %.12g "
+						                "apart, within the shell %g, but are not listed", i,
+						                j, d, l->shell);
+				}
+			}
+	return LZ_OK;
+}
+
+int lz_edmd_list_audit(const lz_edmd *e)
+{
+	for (uint32_t i = 0; i < e->n; i++) {
+		int st = audit_one(e, i);
+		if (st == LZ_OK)
+			st = audit_complete(e, i);
+		if (st)
+			return st;
+	}
+	return LZ_OK;
+}
+
+int lz_edmd_list_renumber(lz_edmd *e, const uint32_t *to)
+{
+	lz_edmd_lists *l = e->lists;
+	unsigned char *block = lz_bigmem_alloc(e->n * l->stride);
+	if (!block)
+		return lz_error(LZ_ENOMEM, "no memory to renumber the lists of %zu particles", e->n);
+	for (size_t i = 0; i < e->n; i++)
+		memcpy(block + to[i] * l->stride, blk(l, (uint32_t)i), l->stride);
+	lz_bigmem_free(l->block);
+	l->block = block;
+	for (uint32_t i = 0; i < e->n; i++)  /* every neighbour number, in block and chain */
+		for (int k = 0, n = blk(l, i)->count; k < n; k++) {
+			uint32_t *s = slot(l, i, k);
+			*s = to[*s];
+		}
+	return LZ_OK;
+}
