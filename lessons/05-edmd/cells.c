@@ -32,19 +32,15 @@
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 
-#include "lz/edmd.h"
-#include "lz/error.h"
+#include "edmd_lesson.h"
 #include "lz/lesson.h"
 #include "lz/output.h"
-#include "lz/rng.h"
-#include "lz/timer.h"
 
 #define SEED 5003u
 #define NSYS 4
 #define REPEATS 5
 #define MAXM 24          /* measured cell counts per system, at most */
 #define AUTO_SLACK 1.25  /* the automatic choice may cost this much more than the best */
-#define CHUNK 256        /* events between looks at the clock */
 
 typedef struct {
 	int dim;
@@ -81,53 +77,6 @@ typedef struct {
 	int is_auto;
 } point;
 
-/* The melted state of system s: positions and velocities, 3 per particle. */
-static int melt(const system_def *s, const sizes *sz, double **r, double **v, int *m_auto,
-                double *L)
-{
-	lz_edmd_params p = {s->dim, s->n, s->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
-	lz_edmd *e = lz_edmd_alloc(&p);
-	lz_rng *rng = lz_rng_alloc(NULL, SEED);
-	int st = e && rng ? lz_edmd_place_lattice(e, rng) : LZ_ENOMEM;
-	if (st == LZ_OK)
-		st = lz_edmd_run(e, (uint64_t)(sz->melt * (double)s->n), INFINITY);
-	*r = malloc(3 * s->n * sizeof **r);
-	*v = malloc(3 * s->n * sizeof **v);
-	if (st == LZ_OK && (!*r || !*v))
-		st = lz_error(LZ_ENOMEM, "no memory for %zu particles", s->n);
-	if (st == LZ_OK) {
-		*m_auto = e->m[0];
-		*L = e->L;
-		lz_edmd_sync(e);
-		for (size_t i = 0; i < s->n; i++)
-			for (int a = 0; a < 3; a++) {
-				(*r)[3 * i + a] = e->p[i].r[a];
-				(*v)[3 * i + a] = e->p[i].v[a];
-			}
-	}
-	lz_edmd_free(e);
-	lz_rng_free(rng);
-	return st;
-}
-
-/* Run e for at least `budget` CPU seconds: the events and collisions it took, and the
- * CPU seconds. */
-static int timed(lz_edmd *e, double budget, double *events, double *colls, double *cpu)
-{
-	lz_edmd_reset_counts(e);
-	double t0 = lz_cpu_now(), t;
-	do {
-		int st = lz_edmd_run(e, CHUNK, INFINITY);
-		if (st)
-			return st;
-		t = lz_cpu_now();
-	} while (t - t0 < budget);
-	*events = (double)e->events;
-	*colls = (double)e->collisions;
-	*cpu = t - t0;
-	return LZ_OK;
-}
-
 /* System s loaded from (r, v) into ms[k] cells per side, k < np, timed: REPEATS
  * passes over all the cell counts, one stretch each, so that a burst of load from
  * another process on the machine spoils one stretch of several counts rather than
@@ -148,12 +97,12 @@ static int measure(const system_def *s, const sizes *sz, const double *r, const 
 	}
 	for (int q = 0; q < REPEATS && st == LZ_OK; q++)
 		for (int k = 0; k < np && st == LZ_OK; k++) {
-			double ev = 0, coll = 0, cpu = 0;
-			st = timed(e[k], sz->budget, &ev, &coll, &cpu);
-			us[k][q] = 1e6 * cpu / coll;
-			eps[k][q] = ev / cpu;
-			ev_tot[k] += ev;
-			coll_tot[k] += coll;
+			edmd_lesson_stretch t = {0};
+			st = edmd_lesson_time(e[k], sz->budget, &t);
+			us[k][q] = 1e6 * t.cpu / t.collisions;
+			eps[k][q] = t.events / t.cpu;
+			ev_tot[k] += t.events;
+			coll_tot[k] += t.collisions;
 		}
 	for (int k = 0; k < np && st == LZ_OK; k++) {
 		point *pt = &pts[k];
@@ -223,7 +172,9 @@ int main(int argc, char **argv)
 		double *r = NULL, *v = NULL, box;
 		int m_auto, ms[MAXM + 1];
 		point pts[MAXM + 1];
-		if (melt(sd, sz, &r, &v, &m_auto, &box) != LZ_OK) {
+		lz_edmd_params p = {sd->dim, sd->n, sd->eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0,
+		                    LZ_EDMD_CELLS, 0, 0};
+		if (edmd_lesson_melt(&p, SEED, sz->melt, &r, &v, &m_auto, &box) != LZ_OK) {
 			free(r);
 			free(v);
 			lz_data_close(d);

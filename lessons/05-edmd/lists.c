@@ -33,17 +33,13 @@
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 
-#include "lz/edmd.h"
-#include "lz/error.h"
+#include "edmd_lesson.h"
 #include "lz/lesson.h"
 #include "lz/output.h"
-#include "lz/rng.h"
-#include "lz/timer.h"
 
 #define SEED 5017u
 #define REPEATS 3
 #define AUTO_SLACK 1.20  /* the automatic choice may cost this much more than the best */
-#define CHUNK 256        /* events between looks at the clock */
 #define MAXOPT 8         /* options per packing: the cells and up to 7 shells */
 
 static const double shells[] = {1.2, 1.3, 1.4, 1.5, 1.8, 2.2, 3.0};
@@ -68,49 +64,6 @@ typedef struct {
 	int is_auto;
 } option;
 
-/* The melted state at packing eta: positions and velocities, 3 per particle. */
-static int melt(const sizes *sz, double eta, double **r, double **v)
-{
-	lz_edmd_params p = {3, sz->n, eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
-	lz_edmd *e = lz_edmd_alloc(&p);
-	lz_rng *rng = lz_rng_alloc(NULL, SEED);
-	int st = e && rng ? lz_edmd_place_lattice(e, rng) : LZ_ENOMEM;
-	if (st == LZ_OK)
-		st = lz_edmd_run(e, (uint64_t)(sz->melt * (double)sz->n), INFINITY);
-	*r = malloc(3 * sz->n * sizeof **r);
-	*v = malloc(3 * sz->n * sizeof **v);
-	if (st == LZ_OK && (!*r || !*v))
-		st = lz_error(LZ_ENOMEM, "no memory for %zu particles", sz->n);
-	if (st == LZ_OK) {
-		lz_edmd_sync(e);
-		for (size_t i = 0; i < sz->n; i++)
-			for (int a = 0; a < 3; a++) {
-				(*r)[3 * i + a] = e->p[i].r[a] - e->L * floor(e->p[i].r[a] / e->L);
-				(*v)[3 * i + a] = e->p[i].v[a];
-			}
-	}
-	lz_edmd_free(e);
-	lz_rng_free(rng);
-	return st;
-}
-
-/* One stretch of at least `budget` CPU seconds: CPU µs per collision, rebuilds. */
-static int stretch(lz_edmd *e, double budget, double *us, double *colls, double *rebuilds)
-{
-	lz_edmd_reset_counts(e);
-	double t0 = lz_cpu_now(), t;
-	do {
-		int st = lz_edmd_run(e, CHUNK, INFINITY);
-		if (st)
-			return st;
-		t = lz_cpu_now();
-	} while (t - t0 < budget);
-	*us = 1e6 * (t - t0) / (double)e->collisions;
-	*colls = (double)e->collisions;
-	*rebuilds = (double)e->rebuilds;
-	return LZ_OK;
-}
-
 /* The options at packing eta, loaded from (r, v), warmed and timed in turn. Returns
  * their number (the cells first, then the shells the box holds). */
 static int measure(const sizes *sz, double eta, const double *r, const double *v,
@@ -133,10 +86,11 @@ static int measure(const sizes *sz, double eta, const double *r, const double *v
 	double colls[MAXOPT] = {0}, rebuilds[MAXOPT] = {0};
 	for (int q = 0; q < REPEATS && st == LZ_OK; q++)
 		for (int o = 0; o < k && st == LZ_OK; o++) {
-			double c, b;
-			st = stretch(e[o], sz->budget, &us[o][q], &c, &b);
-			colls[o] += c;
-			rebuilds[o] += b;
+			edmd_lesson_stretch t = {0};
+			st = edmd_lesson_time(e[o], sz->budget, &t);
+			us[o][q] = 1e6 * t.cpu / t.collisions;
+			colls[o] += t.collisions;
+			rebuilds[o] += t.rebuilds;
 		}
 	for (int o = 0; o < k && st == LZ_OK; o++) {
 		gsl_sort(us[o], 1, REPEATS);
@@ -171,7 +125,8 @@ int main(int argc, char **argv)
 	for (int k = 0; k < sz->npack; k++) {
 		double eta = sz->packing[k], *r = NULL, *v = NULL;
 		option opt[MAXOPT];
-		int nopt = 0, st = melt(sz, eta, &r, &v);
+		lz_edmd_params p = {3, sz->n, eta, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
+		int nopt = 0, st = edmd_lesson_melt(&p, SEED, sz->melt, &r, &v, NULL, NULL);
 		if (st == LZ_OK)
 			st = measure(sz, eta, r, v, opt, &nopt);
 		free(r);

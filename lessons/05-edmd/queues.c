@@ -25,18 +25,14 @@
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 
-#include "lz/edmd.h"
-#include "lz/error.h"
+#include "edmd_lesson.h"
 #include "lz/lesson.h"
 #include "lz/output.h"
-#include "lz/rng.h"
-#include "lz/timer.h"
 
 #define SEED 5021u
 #define ETA 0.5
 #define REPEATS 3
 #define AUTO_SLACK 1.15
-#define CHUNK 256
 
 /* The options: cells with the binary heap, then lists with each queue. */
 #define NOPT 4
@@ -56,31 +52,6 @@ static const size_t quick_n[] = {1000, 10000, 50000};
 static const sizes full = {4, full_n, 40, 20, 1.0};
 static const sizes quick = {3, quick_n, 15, 8, 0.05};
 
-static int melt(size_t n, const sizes *sz, double **r, double **v)
-{
-	lz_edmd_params p = {3, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_LIST, 0, 0};
-	lz_edmd *e = lz_edmd_alloc(&p);
-	lz_rng *rng = lz_rng_alloc(NULL, SEED);
-	int st = e && rng ? lz_edmd_place_lattice(e, rng) : LZ_ENOMEM;
-	if (st == LZ_OK)
-		st = lz_edmd_run(e, (uint64_t)(sz->melt * (double)n), INFINITY);
-	*r = malloc(3 * n * sizeof **r);
-	*v = malloc(3 * n * sizeof **v);
-	if (st == LZ_OK && (!*r || !*v))
-		st = lz_error(LZ_ENOMEM, "no memory for %zu particles", n);
-	if (st == LZ_OK) {
-		lz_edmd_sync(e);
-		for (size_t i = 0; i < n; i++)
-			for (int a = 0; a < 3; a++) {
-				(*r)[3 * i + a] = e->p[i].r[a] - e->L * floor(e->p[i].r[a] / e->L);
-				(*v)[3 * i + a] = e->p[i].v[a];
-			}
-	}
-	lz_edmd_free(e);
-	lz_rng_free(rng);
-	return st;
-}
-
 /* CPU µs per collision of every option at N = n, median of REPEATS stretches. */
 static int measure(size_t n, const sizes *sz, const double *r, const double *v,
                    double *us, double *bytes)
@@ -99,13 +70,9 @@ static int measure(size_t n, const sizes *sz, const double *r, const double *v,
 	double t[NOPT][REPEATS];
 	for (int q = 0; q < REPEATS && st == LZ_OK; q++)
 		for (int o = 0; o < NOPT && st == LZ_OK; o++) {
-			lz_edmd_reset_counts(e[o]);
-			double t0 = lz_cpu_now(), t1;
-			do {
-				st = lz_edmd_run(e[o], CHUNK, INFINITY);
-				t1 = lz_cpu_now();
-			} while (st == LZ_OK && t1 - t0 < sz->budget);
-			t[o][q] = 1e6 * (t1 - t0) / (double)e[o]->collisions;
+			edmd_lesson_stretch s = {0};
+			st = edmd_lesson_time(e[o], sz->budget, &s);
+			t[o][q] = 1e6 * s.cpu / s.collisions;
 		}
 	for (int o = 0; o < NOPT && st == LZ_OK; o++) {
 		gsl_sort(t[o], 1, REPEATS);
@@ -136,7 +103,8 @@ int main(int argc, char **argv)
 	for (int k = 0; k < sz->npoints; k++) {
 		size_t n = sz->n[k];
 		double *r = NULL, *v = NULL, us[NOPT], bytes[NOPT];
-		int st = melt(n, sz, &r, &v);
+		lz_edmd_params p = {3, n, ETA, 1.0, 0.0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_LIST, 0, 0};
+		int st = edmd_lesson_melt(&p, SEED, sz->melt, &r, &v, NULL, NULL);
 		if (st == LZ_OK)
 			st = measure(n, sz, r, v, us, bytes);
 		free(r);

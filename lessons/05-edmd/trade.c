@@ -190,12 +190,7 @@ static int start(lz_edmd *e, const sizes *sz, double *r0, double *v0)
 		st = lz_edmd_run(e, (uint64_t)(sz->melt * (double)e->n), INFINITY);
 	if (st)
 		return st;
-	lz_edmd_sync(e);
-	for (size_t i = 0; i < e->n; i++)
-		for (int a = 0; a < 3; a++) {
-			r0[3 * i + a] = e->p[i].r[a];
-			v0[3 * i + a] = e->p[i].v[a];
-		}
+	lz_edmd_get(e, r0, v0);
 	return LZ_OK;
 }
 

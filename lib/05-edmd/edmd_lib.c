@@ -346,6 +346,22 @@ int lz_edmd_set(lz_edmd *e, const double *r, const double *v)
 	return settle(e);
 }
 
+void lz_edmd_get(lz_edmd *e, double *r, double *v)
+{
+	lz_edmd_sync(e);
+	for (size_t i = 0; i < e->n; i++)
+		for (int a = 0; a < 3; a++) {
+			double x = e->p[i].r[a];
+			if (a < e->dim && !e->wall[a]) {
+				x -= e->L * floor(x / e->L);
+				if (x >= e->L)  /* -1e-17 wraps to L in round-off */
+					x = 0;
+			}
+			r[3 * i + a] = x;
+			v[3 * i + a] = e->p[i].v[a];
+		}
+}
+
 /* The records set: into the cells, checked for overlaps, started. */
 static int settle(lz_edmd *e)
 {

@@ -370,6 +370,38 @@ LZ_TEST(edmd_lists_follow_the_trajectory_of_the_cells)
 }
 END_TEST
 
+LZ_TEST(edmd_get_hands_a_listed_state_back_to_set)
+{
+	/* a list keeps a sphere's centre where its flight took it, outside the box after a
+	 * while; lz_edmd_get wraps it back, and lz_edmd_set takes the state into cells with
+	 * the same energy and momentum */
+	lz_edmd *l = lists_lattice(3, 2000, 0.4, LZ_EDMD_WALLS_NONE, 0, 1.8, LZ_EDMD_CALENDAR, 9);
+	l->rebase_auto = 0;
+	ck_assert_int_eq(lz_edmd_run(l, 40000, INFINITY), LZ_OK);
+	size_t n = l->n;
+	double *r = malloc(3 * n * sizeof *r), *v = malloc(3 * n * sizeof *v), P0[3], P1[3];
+	ck_assert(r && v);
+	lz_edmd_get(l, r, v);
+	for (size_t k = 0; k < 3 * n; k++)
+		LZ_REQUIRE(r[k] >= 0 && r[k] < l->L, "coordinate %zu: %.17g outside [0, %.17g)", k,
+		           r[k], l->L);
+	lz_edmd_params pc = {3, n, 0.4, 1, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_CELLS, 0, 0};
+	lz_edmd *c = lz_edmd_alloc(&pc);
+	ck_assert_msg(lz_edmd_set(c, r, v) == LZ_OK, "set: %s", lz_error_message());
+	lz_edmd_momentum(l, P0);
+	lz_edmd_momentum(c, P1);
+	ck_assert_msg(fabs(lz_edmd_energy(c) / lz_edmd_energy(l) - 1) < 1e-14, "energy %.17g, "
+	              "was %.17g", lz_edmd_energy(c), lz_edmd_energy(l));
+	for (int a = 0; a < 3; a++)
+		ck_assert_msg(fabs(P1[a] - P0[a]) < 1e-12, "momentum %c: %.3g, was %.3g", "xyz"[a],
+		              P1[a], P0[a]);
+	free(r);
+	free(v);
+	lz_edmd_free(c);
+	lz_edmd_free(l);
+}
+END_TEST
+
 LZ_TEST(edmd_lists_at_a_clock_of_1e12_and_in_collapse)
 {
 	/* a clock far from 0 (re-based: small times inside) runs as well as one at 0;

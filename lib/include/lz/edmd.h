@@ -358,6 +358,12 @@ int lz_edmd_place_lattice(lz_edmd *e, lz_rng *rng);
  * cells, O(n)). */
 int lz_edmd_set(lz_edmd *e, const double *r, const double *v);
 
+/* The inverse of lz_edmd_set: every particle brought to now (lz_edmd_sync), its
+ * position into r[i·3 + a], wrapped into [0, L) on the periodic axes, its velocity
+ * into v[i·3 + a] (z components 0 in 2D). What it writes, lz_edmd_set takes back
+ * into a system of the same box. O(n). */
+void lz_edmd_get(lz_edmd *e, double *r, double *v);
+
 /* Maxwell velocities into v (3 per particle, z = 0 in 2D): Gaussian, the total
  * momentum removed (n > 1), scaled to kT = 1 exactly. O(n). */
 void lz_edmd_maxwell(const lz_edmd *e, lz_rng *rng, double *v);
