@@ -69,8 +69,8 @@ static const lz_key keys[] = {
 	         "from 0.5, where they were measured faster (lesson 05 §10)"},
 	{.name = "shell", .type = LZ_KEY_REAL, .def = "", .min = 1, .max = 4, .min_open = 1,
 	 .unit = "σ",
-	 .help = "neighbours = list: the shell S of a list; unset: 1.4 (3D) or 1.8 (2D) in "
-	         "a dense fluid, wider below (lz_edmd_list_shell)"},
+	 .help = "neighbours = list: the shell S of a list; unset: 1.3 to 1.5 (3D) or 1.8 (2D) "
+	         "in a dense fluid, wider below (lz_edmd_list_shell)"},
 	{.name = "queue", .type = LZ_KEY_ENUM, .def = "auto", .choices = "auto|heap|heap4|calendar",
 	 .help = "what orders the events: the binary heap (the assignment), a 4-ary heap or "
 	         "a calendar queue (both with lists only); auto: the calendar with lists, "

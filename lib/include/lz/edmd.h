@@ -485,7 +485,8 @@ typedef struct lz_edmd_lists {
 } lz_edmd_lists;
 
 /* The default shell: the S that the measurements of lesson 05 §10 found fastest at
- * this packing, 1.5 or narrower in a dense fluid, wider in a dilute one. O(1). */
+ * this packing, 1.5 or narrower in a dense fluid (1.3 near jamming), wider in a dilute
+ * one; narrowed where the fastest would need more than 160 bytes per particle. O(1). */
 double lz_edmd_list_shell(int dim, double packing);
 
 /* The cells per side for lists of shell S in a box of side L: as many as fit at least
