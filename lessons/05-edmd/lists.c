@@ -40,9 +40,9 @@
 #define SEED 5017u
 #define REPEATS 3
 #define AUTO_SLACK 1.20  /* the automatic choice may cost this much more than the best */
-#define MAXOPT 8         /* options per packing: the cells and up to 7 shells */
+#define MAXOPT 9         /* options per packing: the cells and up to 8 shells */
 
-static const double shells[] = {1.2, 1.3, 1.4, 1.5, 1.8, 2.2, 3.0};
+static const double shells[] = {1.2, 1.3, 1.35, 1.4, 1.5, 1.8, 2.2, 3.0};
 #define NSHELL ((int)(sizeof shells / sizeof shells[0]))
 
 typedef struct {

@@ -13,6 +13,8 @@ stats 'queues.dat' u 3 nooutput name "C"
 set xrange [N_min / 1.5 : N_max * 1.5]
 set yrange [C_min / 1.3 : C_max * 1.3]
 set title "Hard spheres at η = 0.5: which queue?"
-name(o) = word("cells,_binary_heap lists,_binary_heap lists,_4-ary_heap lists,_calendar", o + 1)
+names = "'cells, binary heap' 'lists, binary heap' 'lists, 4-ary heap' 'lists, calendar'"
+name(o) = word(names, o + 1)
 rgb(o) = word("0x000000 0x1f77b4 0xff7f0e 0xd62728", o + 1) + 0
-plot for [o = 0:3] 'queues.dat' u 1:($2 == o ? $3 : NaN) w lp lc rgb rgb(o) pt 7 lw 2 t system(sprintf("echo %s | tr _ ' '", name(o)))
+# the rows cycle through the four options at each N: every fourth row is one option
+plot for [o = 0:3] 'queues.dat' u 1:3 every 4::o w lp lc rgb rgb(o) pt 7 lw 2 t name(o)

@@ -3,7 +3,8 @@
 #
 # Reads datasets/scenes/bench.list: one benchmark per line, `SCENE key=v1,v2,...
 # [key=value ...]`; keys with comma lists are swept, every combination runs REPEATS
-# times (default 3) as `lz run SCENE key=value ... --quiet`. From each run's
+# times (default 3; a line's own `repeats=N`, not passed to lz, overrides it for a run
+# too big to repeat) as `lz run SCENE key=value ... --quiet`. From each run's
 # summary.json it takes the speed figures (steps_per_s, atomsteps_per_s, and any
 # other *_per_s), state_bytes_per_particle (or _per_site) and wall_s, and reports the median over the
 # repeats: a table on stdout and BUILD/bench/NN-name.json per stage (the stage is the
@@ -94,6 +95,11 @@ while IFS= read -r line || [ -n "$line" ]; do
 	read -r -a words <<<"$line"
 	[ ${#words[@]} = 0 ] && continue
 	scene=${words[0]}
+	times=$repeats
+	if [[ ${words[-1]} =~ ^repeats=([1-9][0-9]*)$ ]]; then
+		times=${BASH_REMATCH[1]}
+		unset 'words[-1]'
+	fi
 	stage_nn=${scene%%-*}
 	if ! [[ $stage_nn =~ ^[0-9][0-9]$ ]]; then
 		echo "bench.sh: $list:$lineno: scene '$scene' should be named NN-..." >&2
@@ -104,7 +110,7 @@ while IFS= read -r line || [ -n "$line" ]; do
 		read -r -a kv <<<"$params"
 		tag=$(printf '%s' "$scene-$params" | tr ' =,/' '_-__')
 		figures=()
-		for ((r = 1; r <= repeats; r++)); do
+		for ((r = 1; r <= times; r++)); do
 			dir=$out/runs/$tag-$r
 			if ! "$lz" run "$scene" "${kv[@]}" --out "$dir" --quiet >"$dir.log" 2>&1; then
 				echo "bench.sh: $scene $params failed: $(head -1 "$dir.log")" >&2
