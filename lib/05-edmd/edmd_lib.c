@@ -346,22 +346,6 @@ int lz_edmd_set(lz_edmd *e, const double *r, const double *v)
 	return settle(e);
 }
 
-void lz_edmd_get(lz_edmd *e, double *r, double *v)
-{
-	lz_edmd_sync(e);
-	for (size_t i = 0; i < e->n; i++)
-		for (int a = 0; a < 3; a++) {
-			double x = e->p[i].r[a];
-			if (a < e->dim && !e->wall[a]) {
-				x -= e->L * floor(x / e->L);
-				if (x >= e->L)  /* -1e-17 wraps to L in round-off */
-					x = 0;
-			}
-			r[3 * i + a] = x;
-			v[3 * i + a] = e->p[i].v[a];
-		}
-}
-
 /* The records set: into the cells, checked for overlaps, started. */
 static int settle(lz_edmd *e)
 {
@@ -379,8 +363,11 @@ static int settle(lz_edmd *e)
 
 int lz_edmd_start(lz_edmd *e)
 {
-	if (e->lists)
-		return lz_edmd_list_start(e);
+	if (e->lists) {
+		int st = lz_edmd_list_start(e);
+		lz_edmd_reset_counts(e);
+		return st;
+	}
 	lz_edmd_cell_clear(e);
 	for (size_t i = e->n; i-- > 0;) {
 		e->p[i].t0 = 0;

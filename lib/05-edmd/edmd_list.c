@@ -451,7 +451,6 @@ int lz_edmd_list_start(lz_edmd *e)
 		lz_calendar_clear(e->cal, 0);
 	else
 		lz_heap_clear(e->heap);
-	lz_edmd_reset_counts(e);
 	for (uint32_t i = 0; i < e->n; i++) {
 		int st = gather(e, i, 1, NULL);
 		if (st != LZ_OK)

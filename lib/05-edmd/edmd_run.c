@@ -1,6 +1,7 @@
 /* edmd_run.c — the run of lz/edmd.h around the graded event loop: re-basing the clock,
- * renumbering the particles cell by cell, the collapse and stall guards, and the
- * O(n) observables and checks (energy, momentum, temperature, invariants). It calls
+ * renumbering the particles cell by cell, the collapse and stall guards, the state
+ * handed back (lz_edmd_get) and the O(n) observables and checks (energy, momentum,
+ * temperature, invariants). It calls
  * edmd_lib.c (the cells), never the other way round. */
 #include <math.h>
 #include <stdlib.h>
@@ -12,6 +13,27 @@ void lz_edmd_sync(lz_edmd *e)
 {
 	for (size_t i = 0; i < e->n; i++)
 		lz_edmd_advance(e, &e->p[i], e->now);
+}
+
+void lz_edmd_get(lz_edmd *e, double *r, double *v)
+{
+	lz_edmd_sync(e);
+	for (size_t i = 0; i < e->n; i++)
+		for (int a = 0; a < 3; a++) {
+			double x = e->p[i].r[a];
+			if (a < e->dim && !e->wall[a]) {
+				x -= e->L * floor(x / e->L);
+				if (x >= e->L)  /* -1e-17 wraps to L in round-off */
+					x = 0;
+			}
+			r[3 * i + a] = x;
+			v[3 * i + a] = e->p[i].v[a];
+		}
+}
+
+int lz_edmd_next(lz_edmd *e)
+{
+	return e->lists ? lz_edmd_list_step(e) : lz_edmd_step(e);
 }
 
 int lz_edmd_rebase(lz_edmd *e)

@@ -500,9 +500,9 @@ int lz_edmd_list_cells(int dim, size_t n, double L, double shell);
 lz_edmd_lists *lz_edmd_list_alloc(const lz_edmd *e, double shell);
 void lz_edmd_list_free(lz_edmd_lists *l);
 
-/* lz_edmd_start with lists: every centre where its particle is, the cells by centre,
- * every list built, every particle predicted (the heap filled). LZ_OK, or LZ_ENOMEM
- * when the lists cannot grow. O(n · neighbours). */
+/* lz_edmd_start with lists (which then resets the counters): every centre where its
+ * particle is, the cells by centre, every list built, every particle predicted (the
+ * queue filled). LZ_OK, or LZ_ENOMEM when the lists cannot grow. O(n · neighbours). */
 int lz_edmd_list_start(lz_edmd *e);
 
 /* Predict particle i at now from its list, its skin and, when near one, the walls:
@@ -527,11 +527,8 @@ static inline double lz_edmd_stray(const lz_edmd *e)
 int lz_edmd_list_pays(int dim, size_t n, double packing);
 
 /* One event, whichever the neighbours: lz_edmd_step or lz_edmd_list_step (0, -1, or
- * an LZ_E code). */
-static inline int lz_edmd_next(lz_edmd *e)
-{
-	return e->lists ? lz_edmd_list_step(e) : lz_edmd_step(e);
-}
+ * an LZ_E code). O(1) on average. */
+int lz_edmd_next(lz_edmd *e);
 
 /* lz_edmd_fetch_ahead with lists: the next events' records, lists and neighbours. */
 void lz_edmd_list_fetch_ahead(const lz_edmd *e);
