@@ -1,8 +1,8 @@
 /* edmd_run.c — the run of lz/edmd.h around the graded event loop: re-basing the clock,
  * renumbering the particles cell by cell, the collapse and stall guards, the state
  * handed back (lz_edmd_get) and the O(n) observables and checks (energy, momentum,
- * temperature, invariants). It calls
- * edmd_lib.c (the cells), never the other way round. */
+ * temperature, invariants). It calls edmd_lib.c, edmd_cells.c and edmd_list.c, never
+ * the other way round. */
 #include <math.h>
 #include <stdlib.h>
 

@@ -3,8 +3,8 @@
 #
 # Reads datasets/scenes/bench.list: one benchmark per line, `SCENE key=v1,v2,...
 # [key=value ...]`; keys with comma lists are swept, every combination runs REPEATS
-# times (default 3; a line's own `repeats=N`, not passed to lz, overrides it for a run
-# too big to repeat) as `lz run SCENE key=value ... --quiet`. From each run's
+# times (default 3; a line's last word `repeats=N`, not passed to lz, overrides it for
+# a run too big to repeat) as `lz run SCENE key=value ... --quiet`. From each run's
 # summary.json it takes the speed figures (steps_per_s, atomsteps_per_s, and any
 # other *_per_s), state_bytes_per_particle (or _per_site) and wall_s, and reports the median over the
 # repeats: a table on stdout and BUILD/bench/NN-name.json per stage (the stage is the
