@@ -114,6 +114,9 @@ static int check_params(const lz_pedmd_params *p)
 		return lz_error(LZ_EINVAL, "recheck = %d: 0 or 1", p->recheck);
 	if (p->work < 1)
 		return lz_error(LZ_EINVAL, "work = %d events a turn: at least 1", p->work);
+	if (!(p->grow > 1 && p->grow <= 2))
+		return lz_error(LZ_EINVAL, "grow = %g: the window's growth after a commit, in (1, 2]",
+		                p->grow);
 	return LZ_OK;
 }
 
@@ -859,13 +862,11 @@ static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
 			rebase(r);
 		r->T = r->t_end;
 		/* A window cut short by a cut proves nothing of the width. Slow growth, fast
-		 * shrinking, since a rollback loses the window's events up to the error: x1.02
-		 * after a commit and /2 after a rollback would settle where ln 1.02 / (ln 1.02
-		 * + ln 2), one window in 36, is rolled back (doubling, as the paper does: every
-		 * other one); shrinking to the error's distance when that is shorter settles
-		 * lower still (lesson §11) */
+		 * shrinking: a rollback loses the window's events up to the error, a commit
+		 * gains a little more length (doubling, as the paper does, rolls back every
+		 * other window; lesson §11) */
 		if (!r->forced)
-			r->width = fmin(1.02 * r->width, 64 * r->p.window);
+			r->width = fmin(r->p.grow * r->width, 64 * r->p.window);
 		r->phase = r->T >= t_stop ? LZ_PEDMD_DONE : LZ_PEDMD_BEGIN;
 		if (r->phase == LZ_PEDMD_DONE)
 			finish(r, t_stop);
@@ -874,7 +875,7 @@ static void verdict(lz_pedmd *r, double t_error, double t_next, double t_stop)
 	lz_pedmd_restore(r);
 	if (v == LZ_PEDMD_ROLLBACK) {
 		r->counts.rollbacks++;
-		r->width = fmax(fmin(r->width / 2, t_error - r->T), r->p.window / 64);
+		r->width = fmax(r->width / 2, r->p.window / 64);
 	} else {
 		r->counts.conservative++;
 	}

@@ -55,8 +55,12 @@ static const lz_key keys[] = {
 	 .help = "virtual: the time a message is on its way, at least"},
 	{.name = "window", .type = LZ_KEY_REAL, .def = "0.05", .min = 0, .max = 1e6,
 	 .min_open = 1, .unit = "τ",
-	 .help = "the first optimistic window; it grows by an eighth after a commit and halves "
+	 .help = "the first optimistic window; it grows by `grow` after a commit and halves "
 	         "after a rollback, within 1/64 .. 64 times this"},
+	{.name = "grow", .type = LZ_KEY_REAL, .def = "1.125", .min = 1, .max = 2, .min_open = 1,
+	 .help = "the window's growth after a commit: about ln grow / (ln grow + ln 2) of the "
+	         "windows are rolled back (1.125: one in seven; 1.02, for windows of 10^4 "
+	         "events and more: one in 36)"},
 	{.name = "rebase", .type = LZ_KEY_REAL, .def = "0.5", .min = 0, .max = 1e6,
 	 .min_open = 1, .unit = "τ",
 	 .help = "the clocks are re-based at the multiples of this absolute time (the serial "
@@ -144,7 +148,7 @@ int lz_pedmd_scene_make(const lz_scene *s, int quiet, lz_pedmd_scene *out)
 	int every = lz_scene_enum(s, "balance") == 2 ? (int)lz_scene_int(s, "balance_every") : 0;
 	out->params = (lz_pedmd_params){lz_scene_real(s, "window"), lz_scene_real(s, "rebase"),
 	                                every, 0.1, 0, (int)lz_scene_int(s, "work"),
-	                                lz_scene_bool(s, "recheck")};
+	                                lz_scene_bool(s, "recheck"), lz_scene_real(s, "grow")};
 	out->t_stop = lz_scene_real(s, "time");
 	out->check = out->reference != NULL;
 	return LZ_OK;

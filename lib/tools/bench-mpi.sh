@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # bench-mpi.sh BUILD — the parallel engine's real speed (make bench, after bench.sh).
 #
-# datasets/scenes/06-mpi-bench.scene at N = 10^5 (time 6) and 10^6 (time 0.5), each
+# datasets/scenes/06-mpi-bench.scene at N = 10^5 (time 6) and 10^6 (time 0.5), the first
+# window holding about 8000 events per rank at both (window = 0.05 and 0.005), each
 # point REPEATS times (default 3), interleaved: the serial engine (`lz run SCENE
 # method=edmd`: its events over its CPU seconds), then lz-mpi on 1 and on 2 processes
 # (committed events over the parallel run's wall seconds). Never more processes than
@@ -77,15 +78,15 @@ printf '{\n  "scene": "%s",\n  "cpu": "%s",\n  "cores": %s,\n  "repeats": %s,\n 
 sep=""
 printf '%-9s %14s %14s %14s %14s %12s %12s %14s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" \
 	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser"
-for point in "100000 6" "1000000 0.5"; do
-	read -r n t <<<"$point"
+for point in "100000 6 0.05" "1000000 0.5 0.005"; do
+	read -r n t w <<<"$point"
 	s=() p1=() p2=() ratio=() cost=() lat=()
 	for ((k = 0; k < repeats; k++)); do
 		s+=("$(serial_rate n="$n" time="$t")")
-		read -r r _ <<<"$(mpi_rate 1 n="$n" time="$t")"
+		read -r r _ <<<"$(mpi_rate 1 n="$n" time="$t" window="$w")"
 		p1+=("$r")
 		if [ "$cores" -ge 2 ]; then
-			read -r r c l <<<"$(mpi_rate 2 n="$n" time="$t")"
+			read -r r c l <<<"$(mpi_rate 2 n="$n" time="$t" window="$w")"
 			p2+=("$r") cost+=("$c") lat+=("$l")
 			ratio+=("$(awk -v a="$r" -v b="${s[k]}" 'BEGIN {if (b > 0 && a > 0) print a / b}')")
 		fi
@@ -98,7 +99,7 @@ for point in "100000 6" "1000000 0.5"; do
 		mr=$(printf '%s\n' "${ratio[@]}" | median)
 		mc=$(printf '%s\n' "${cost[@]}" | median)
 		ml=$(printf '%s\n' "${lat[@]}" | median)
-		mm=$(model_ratio "$ms" "$m1" "$mc" "$ml" n="$n" time="$t")
+		mm=$(model_ratio "$ms" "$m1" "$mc" "$ml" n="$n" time="$t" window="$w")
 	fi
 	printf '%-9s %14s %14s %14s %14s %12s %12s %14s\n' "$n" "$ms" "$m1" "${m2:-skipped}" \
 		"${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}"

@@ -23,7 +23,7 @@
 #include "lz/rng.h"
 #include "lztest.h"
 
-static const lz_pedmd_params PARAMS = {0.05, 0.5, 0, 0.1, 1, 16, 0};
+static const lz_pedmd_params PARAMS = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
 
 /* ---- systems ---- */
 

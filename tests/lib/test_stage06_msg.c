@@ -240,13 +240,15 @@ LZ_TEST(pedmd_refuses_bad_parameters_and_audits)
 {
 	lz_edmd *s = gas(2, 400, 0.3, 2);
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 1, 2, 0, 1, 1e-6, 1e-6, 1e-6};
-	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16, 0};
+	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
 	lz_pedmd_params bad[] = {
-		{0, 0.5, 0, 0.1, 1, 16, 0}, {INFINITY, 0.5, 0, 0.1, 1, 16, 0}, {0.05, -1, 0, 0.1, 1, 16, 0},
-		{0.05, 0.5, -1, 0.1, 1, 16, 0}, {0.05, 0.5, 0, 1, 1, 16, 0}, {0.05, 0.5, 0, 0.1, 1, 0, 0},
+		{0, 0.5, 0, 0.1, 1, 16, 0, 1.125},    {INFINITY, 0.5, 0, 0.1, 1, 16, 0, 1.125},
+		{0.05, -1, 0, 0.1, 1, 16, 0, 1.125},  {0.05, 0.5, -1, 0.1, 1, 16, 0, 1.125},
+		{0.05, 0.5, 0, 1, 1, 16, 0, 1.125},   {0.05, 0.5, 0, 0.1, 1, 0, 0, 1.125},
+		{0.05, 0.5, 0, 0.1, 1, 16, 0, 1},     {0.05, 0.5, 0, 0.1, 1, 16, 0, NAN},
 	};
-	const char *says[] = {"window", "window", "rebase", "balance", "threshold", "work"};
-	for (int k = 0; k < 6; k++) {
+	const char *says[] = {"window", "window", "rebase", "balance", "threshold", "work", "grow", "grow"};
+	for (int k = 0; k < 8; k++) {
 		ck_assert_msg(lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &bad[k]) == NULL &&
 		              lz_test_last_error() == LZ_EINVAL && strstr(lz_error_message(), says[k]),
 		              "bad parameters %d must be refused naming %s: %s", k, says[k],
@@ -311,7 +313,7 @@ LZ_TEST(pedmd_cuts_from_a_pilot_run_spread_the_work)
 {
 	lz_edmd *s = sediment(800), *t = sediment(800);
 	lz_stub_params sp = {4, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
 	lz_pedmd_sim *pilot = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 	ck_assert_ptr_nonnull(pilot);
 	ck_assert_int_eq(lz_pedmd_sim_run(pilot, 1.0), LZ_OK);
@@ -367,7 +369,7 @@ LZ_TEST(pedmd_cuts_move_during_a_run)
 	 * windows when that pays, and the run stays the serial run, bit for bit */
 	lz_edmd *s = sediment(800), *ref = sediment(800), *pic = sediment(800);
 	lz_stub_params sp = {4, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 4, 0.05, 0, 16, 0};
+	lz_pedmd_params pp = {0.05, 0.5, 4, 0.05, 0, 16, 0, 1.125};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 	ck_assert_ptr_nonnull(x);
 	x->audit = 1;
@@ -402,7 +404,7 @@ LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
 	 * or a rank in the middle of a window, is refused with a message */
 	lz_edmd *s = gas(2, 600, 0.35, 5), *ref = gas(2, 600, 0.35, 5);
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 2, 2, 0, 4, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, 1.125};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_ROWS, &sp, &pp);
 	ck_assert_ptr_nonnull(x);
 	ck_assert_int_eq(lz_pedmd_sim_run(x, 0.4), LZ_OK);
@@ -457,7 +459,7 @@ LZ_TEST(pedmd_rollback_check_reruns_every_window_alike)
 			lz_edmd *s = gas(2, 600, 0.35, 7), *ref = gas(2, 600, 0.35, 7);
 			ck_assert_int_eq(lz_pedmd_serial(ref, 1.0, 0.5), LZ_OK);
 			lz_stub_params sp = {P, (lz_stub_policy)policy, 9, 3, 0, 4, 1e-6, 2e-6, 5e-6};
-			lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 1};
+			lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 1, 1.125};
 			lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 			ck_assert_ptr_nonnull(x);
 			int st = lz_pedmd_sim_run(x, 1.0);
@@ -481,5 +483,41 @@ LZ_TEST(pedmd_rollback_check_reruns_every_window_alike)
 			lz_edmd_free(s);
 			lz_edmd_free(ref);
 		}
+}
+END_TEST
+
+LZ_TEST(pedmd_slow_growth_rolls_back_fewer_windows_and_keeps_the_serial_run)
+{
+	/* the window's growth after a commit sets how often a window is rolled back, near
+	 * ln grow / (ln grow + ln 2): about one in seven at 1.125, one in 36 at 1.02; the
+	 * committed run is the serial one either way */
+	lz_edmd *ref = gas(2, 3000, 0.35, 11);
+	ck_assert_int_eq(lz_pedmd_serial(ref, 2.0, 0.5), LZ_OK);
+	double fraction[2];
+	const double grow[2] = {1.125, 1.02};
+	for (int k = 0; k < 2; k++) {
+		lz_edmd *s = gas(2, 3000, 0.35, 11);
+		lz_stub_params sp = {4, LZ_STUB_RANDOM, 3, 3, 0, 4, 1e-6, 2e-6, 5e-6};
+		lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, grow[k]};
+		lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
+		ck_assert_ptr_nonnull(x);
+		ck_assert_msg(lz_pedmd_sim_run(x, 2.0) == LZ_OK, "grow %g: %s", grow[k],
+		              lz_error_message());
+		lz_pedmd_counts c = lz_pedmd_sim_counts(x);
+		ck_assert_msg(c.committed == ref->events, "grow %g: %llu committed against %llu "
+		              "serial events", grow[k], (unsigned long long)c.committed,
+		              (unsigned long long)ref->events);
+		fraction[k] = (double)c.rollbacks / (double)c.windows;
+		lz_pedmd_sim_gather(x, s);
+		for (uint32_t i = 0; i < s->n; i++)
+			LZ_REQUIRE(memcmp(&s->p[i], &ref->p[i], sizeof s->p[i]) == 0, "grow %g: particle "
+			      "%u ends elsewhere than serially", grow[k], i);
+		lz_pedmd_sim_free(x);
+		lz_edmd_free(s);
+	}
+	ck_assert_msg(fraction[1] < fraction[0] / 2, "windows rolled back: %.3f at grow 1.125, "
+	              "%.3f at 1.02 (slower growth should roll back far fewer)", fraction[0],
+	              fraction[1]);
+	lz_edmd_free(ref);
 }
 END_TEST

@@ -168,7 +168,7 @@ typedef struct {
 
 /* What a run is asked to do. */
 typedef struct {
-	double window;      /* the first window's length (> 0); it adapts: x1.125 after a
+	double window;      /* the first window's length (> 0); it adapts: x grow after a
 	                       commit, /2 after a rollback, within [window/64, 64 window] */
 	double rebase;      /* re-base the clock at absolute multiples of this (> 0) */
 	int balance;        /* new cuts from the load since the last ones every this many
@@ -183,6 +183,11 @@ typedef struct {
 	                       start) and run again (as the back-end then schedules it),
 	                       and must end in the same state and events; else the run
 	                       fails with LZ_EDOM. Costs a second run and O(N) per window */
+	double grow;        /* the window's growth after a commit, in (1, 2]: the adaptation
+	                       settles where a fraction ln grow / (ln grow + ln 2) of the
+	                       windows is rolled back (1.125: one in seven, for windows of a
+	                       few hundred events, where the cut is dear; 1.02: one in 36,
+	                       for windows of 10^4 events and more, where a rollback is) */
 } lz_pedmd_params;
 
 /* One rank. Invariants between events: an OWNED particle lies in an owned cell and
