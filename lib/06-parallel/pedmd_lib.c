@@ -164,19 +164,27 @@ static void fill_cells(lz_pedmd *r, const lz_edmd *s)
 	}
 }
 
+/* Whether cell c's block holds a HALO or BORDER cell (r->near). */
+static inline int is_near(const lz_pedmd *r, uint32_t c)
+{
+	return (int)(r->near[c >> 6] >> (c & 63) & 1);
+}
+
 static void mark_near(lz_pedmd *r)
 {
 	const lz_edmd *e = r->e;
 	lz_edmd_block b;
+	memset(r->near, 0, (e->ncells + 63) / 64 * sizeof *r->near);
 	for (uint32_t c = 0; c < e->ncells; c++) {
 		lz_edmd_block_of(e, c, &b);
-		r->near[c] = 0;
+		int near = 0;
 		for (int z = 0; z < b.n[2]; z++)
 			for (int y = 0; y < b.n[1]; y++)
 				for (int x = 0; x < b.n[0]; x++) {
 					uint8_t k = r->cls[b.off[0][x] + b.off[1][y] + b.off[2][z]];
-					r->near[c] |= k == LZ_PEDMD_HALO || k == LZ_PEDMD_BORDER;
+					near |= k == LZ_PEDMD_HALO || k == LZ_PEDMD_BORDER;
 				}
+		r->near[c >> 6] |= (uint64_t)near << (c & 63);
 	}
 }
 
@@ -229,7 +237,7 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 	size_t n = s->n, nc = s->ncells;
 	r->e = copy_system(s);
 	r->cls = malloc(nc);
-	r->near = malloc(nc);
+	r->near = malloc((nc + 63) / 64 * sizeof *r->near);
 	r->read = malloc(nc * sizeof *r->read);
 	r->load = calloc(nc, sizeof *r->load);
 	r->role = calloc(n, 1);
@@ -450,7 +458,7 @@ static double set_key(lz_pedmd *r, uint32_t i)
 	int32_t j;
 	double t = r->own[i].t;
 	e->ev[i] = r->own[i].ev;
-	if (r->near[e->p[i].cell]) {
+	if (is_near(r, e->p[i].cell)) {
 		t = ghost_aim(r, i, t, &j);
 		if (j >= 0)
 			e->ev[i] = (lz_edmd_event){j, e->p[j].count};
@@ -471,7 +479,7 @@ int lz_pedmd_predict(lz_pedmd *r, uint32_t i)
 	lz_edmd_predict(e, i);
 	r->own[i] = (lz_pedmd_event){lz_heap_key(e->heap, i), e->ev[i]};
 	uint32_t cell = e->p[i].cell;
-	if (!r->near[cell])
+	if (!is_near(r, cell))
 		return LZ_OK;
 	lz_edmd_block b;
 	FOR_BLOCK(e, cell, b, c)
@@ -531,8 +539,11 @@ int lz_pedmd_announce(lz_pedmd *r, uint32_t i, uint32_t from, int to_owner, doub
 {
 	int now[27], before[27], nn, nb = 0, st = LZ_OK;
 	uint32_t cell = r->e->p[i].cell;
-	if (to_owner < 0 && r->cls[cell] == LZ_PEDMD_INTERIOR && r->cls[from] == LZ_PEDMD_INTERIOR)
-		return LZ_OK;  /* nobody else sees either cell */
+	/* nobody else sees either cell (far from the border: asked of the bitmap first,
+	 * which is in cache) */
+	if (to_owner < 0 && ((!is_near(r, cell) && !is_near(r, from)) ||
+	                     (r->cls[cell] == LZ_PEDMD_INTERIOR && r->cls[from] == LZ_PEDMD_INTERIOR)))
+		return LZ_OK;
 	nn = lz_pedmd_listeners(r->e, r->d, r->rank, cell, now);
 	if (from != cell)
 		nb = lz_pedmd_listeners(r->e, r->d, r->rank, from, before);

@@ -203,7 +203,9 @@ typedef struct lz_pedmd {
 	lz_pedmd_params p;
 	int rank;
 	uint8_t *cls;                 /* the class of every cell for this rank */
-	uint8_t *near;                /* 1: the cell's block holds a HALO or BORDER cell */
+	uint64_t *near;               /* bit c set: cell c's block holds a HALO or BORDER cell
+	                                 (a bit a cell, so that it stays in cache: every
+	                                 prediction asks) */
 	double *read;                 /* HALO and BORDER cells: the last time a prediction
 	                                 read the cell (lz_pedmd_read_at) */
 	uint32_t *rmark;              /* rmark[c] == epoch: read[c] raised this window, its
