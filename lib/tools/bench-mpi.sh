@@ -63,11 +63,18 @@ model_ratio() {
 			END {if (v > 0 && s > 0) printf "%.4g\n", e / s / v}' "$out/runs/mpi-model/summary.json"
 }
 
-# The serial engine's events per CPU second on the same system.
+# The serial engine's events per CPU second on the same system. A run that fails
+# stops the bench with lz's message (a key the serial engine does not know, say),
+# rather than with an empty column.
 serial_rate() {
-	"$lz" run "$scene" method=edmd "$@" --quiet --out "$out/runs/mpi-serial" >/dev/null 2>&1 &&
-		awk -F'[:,]' '/"events_run"/ {e = $2} /"cpu_s"/ {c = $2} END {if (c > 0) printf "%.6g\n", e / c}' \
-			"$out/runs/mpi-serial/summary.json"
+	local log=$out/runs/mpi-serial.log
+	if ! "$lz" run "$scene" method=edmd "$@" --quiet --out "$out/runs/mpi-serial" >"$log" 2>&1; then
+		echo "bench-mpi: the serial run (lz run $scene method=edmd $*) failed:" >&2
+		cat "$log" >&2
+		exit 1
+	fi
+	awk -F'[:,]' '/"events_run"/ {e = $2} /"cpu_s"/ {c = $2} END {if (c > 0) printf "%.6g\n", e / c}' \
+		"$out/runs/mpi-serial/summary.json"
 }
 
 median() { sort -g | awk '{v[NR] = $1} END {if (NR) print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2)}'; }
@@ -83,7 +90,7 @@ for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 	read -r n t w <<<"$point"
 	s=() p1=() p2=() ratio=() cost=() lat=()
 	for ((k = 0; k < repeats; k++)); do
-		s+=("$(serial_rate n="$n" time="$t")")
+		s+=("$(serial_rate n="$n" time="$t")") || exit 1
 		read -r r _ <<<"$(mpi_rate 1 n="$n" time="$t" window="$w" grow=1.02)"
 		p1+=("$r")
 		if [ "$cores" -ge 2 ]; then
