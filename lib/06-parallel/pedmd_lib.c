@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lz/bigmem.h"
 #include "lz/bits.h"
 #include "lz/error.h"
 #include "lz/pedmd.h"
@@ -218,6 +219,14 @@ static void take_system(lz_pedmd *r, const lz_edmd *s)
 			lz_pedmd_retarget(r, i);
 }
 
+/* size bytes of zeros in huge pages where there are any (lz_bigmem_alloc); NULL when
+ * out of memory. */
+static void *zeroed(size_t size)
+{
+	void *v = lz_bigmem_alloc(size);
+	return v ? memset(v, 0, size) : NULL;
+}
+
 lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
                          const lz_pedmd_params *p)
 {
@@ -236,16 +245,19 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 	r->rank = lz_msg_rank(msg);
 	size_t n = s->n, nc = s->ncells;
 	r->e = copy_system(s);
-	r->cls = malloc(nc);
+	/* Arrays read at random in every event: huge pages where the kernel has them (at
+	 * 10^6 particles each would otherwise miss the address translation as well as the
+	 * cache; lz/bigmem.h). */
+	r->cls = lz_bigmem_alloc(nc);
 	r->near = malloc((nc + 63) / 64 * sizeof *r->near);
-	r->read = malloc(nc * sizeof *r->read);
-	r->load = calloc(nc, sizeof *r->load);
-	r->role = calloc(n, 1);
-	r->own = malloc(n * sizeof *r->own);
-	r->ghost = malloc(n * sizeof *r->ghost);
-	r->heard = malloc(n * sizeof *r->heard);
-	r->mark = calloc(n, sizeof *r->mark);
-	r->rmark = calloc(nc, sizeof *r->rmark);
+	r->read = lz_bigmem_alloc(nc * sizeof *r->read);
+	r->load = zeroed(nc * sizeof *r->load);
+	r->role = zeroed(n);
+	r->own = lz_bigmem_alloc(n * sizeof *r->own);
+	r->ghost = lz_bigmem_alloc(n * sizeof *r->ghost);
+	r->heard = lz_bigmem_alloc(n * sizeof *r->heard);
+	r->mark = zeroed(n * sizeof *r->mark);
+	r->rmark = zeroed(nc * sizeof *r->rmark);
 	r->scratch = malloc((n > nc ? n : nc) * sizeof *r->scratch);
 	if (!r->e || !r->cls || !r->near || !r->read || !r->load || !r->role || !r->own ||
 	    !r->ghost || !r->heard || !r->mark || !r->rmark || !r->scratch) {
@@ -388,17 +400,17 @@ void lz_pedmd_free(lz_pedmd *r)
 	if (!r)
 		return;
 	lz_edmd_free(r->e);
-	free(r->cls);
+	lz_bigmem_free(r->cls);
 	free(r->near);
-	free(r->read);
-	free(r->load);
+	lz_bigmem_free(r->read);
+	lz_bigmem_free(r->load);
 	free(r->load0);
-	free(r->role);
-	free(r->own);
-	free(r->ghost);
-	free(r->heard);
-	free(r->mark);
-	free(r->rmark);
+	lz_bigmem_free(r->role);
+	lz_bigmem_free(r->own);
+	lz_bigmem_free(r->ghost);
+	lz_bigmem_free(r->heard);
+	lz_bigmem_free(r->mark);
+	lz_bigmem_free(r->rmark);
 	free(r->stamps);
 	free(r->scratch);
 	free(r->wait);
