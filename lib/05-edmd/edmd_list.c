@@ -327,6 +327,7 @@ static int link_near(lz_edmd *e, uint32_t i, int after, uint32_t *cand, const ui
 	}
 	for (int q = 0; q < nh; q++) {
 		uint32_t j = cand[q];
+		__builtin_prefetch(&e->p[j]);  /* i's prediction reads it next */
 		int k = 0;
 		while (f && k < f->n && f->nb[k] != j)
 			k++;
@@ -386,6 +387,8 @@ static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 			int32_t j = at[k];
 			cand[nc] = (uint32_t)j;
 			from[nc] = (uint8_t)k;
+			if (j >= 0)  /* link_near reads its centre: ask for it now */
+				__builtin_prefetch(blk(e->lists, (uint32_t)j)->c);
 			nc += j >= 0;
 			at[k] = e->next[j];  /* next[-1] = -1: a finished list stays finished */
 			live += at[k] >= 0;
