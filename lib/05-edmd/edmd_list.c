@@ -338,18 +338,31 @@ static int link_near(lz_edmd *e, uint32_t i, int after, uint32_t *cand, const ui
 	return LZ_OK;
 }
 
+/* Particle j (-1: none) of the block's cell k as the next candidate: *cand and *from
+ * written, its centre asked for (link_near reads it soon); 1 when there was one. */
+static inline int take(const lz_edmd_lists *l, int32_t j, int k, uint32_t *cand,
+                       uint8_t *from)
+{
+	*cand = (uint32_t)j;
+	*from = (uint8_t)k;
+	if (j >= 0)
+		__builtin_prefetch(blk(l, (uint32_t)j)->c);
+	return j >= 0;
+}
+
 /* Every j of the block around i's cell (all of them, or only j > i when `after`)
  * whose centre lies within the shell of i's: linked both ways. The cells' particles
- * are gathered breadth first — every cell's head, then every cell's second, ... — so
- * that the reads along different cells' lists overlap instead of waiting on each
- * other (link_near then takes their distances). LZ_OK or grow's error. */
+ * are gathered breadth first — every cell's head, then every cell's second (both read
+ * with the head, lz_edmd_list), then every cell's third, ... — so that the reads along
+ * different cells' lists overlap instead of waiting on each other (link_near then
+ * takes their distances). LZ_OK or grow's error. */
 static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 {
 	double ci[3];
 	centre_of(e->lists, i, ci);
 	lz_edmd_block b;
 	lz_edmd_block_of(e, e->p[i].cell, &b);
-	int32_t at[27];
+	int32_t at[27], at2[27];  /* each cell's head and second (lz_edmd_list: one read) */
 	double seen[27][3];  /* i's centre as seen from each cell of the block */
 	/* on each axis, how far i's centre is from each cell of the block's row: a cell
 	 * farther than the shell on the three axes together holds no neighbour (about a
@@ -368,7 +381,9 @@ static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 		for (int y = 0; y < b.n[1]; y++)
 			for (int x = 0; x < b.n[0]; x++) {
 				double g2 = gap[0][x] * gap[0][x] + gap[1][y] * gap[1][y] + gap[2][z] * gap[2][z];
-				at[nk] = e->list[b.off[0][x] + b.off[1][y] + b.off[2][z]].head;
+				lz_edmd_list head = e->list[b.off[0][x] + b.off[1][y] + b.off[2][z]];
+				at[nk] = head.head;
+				at2[nk] = head.second;
 				seen[nk][0] = ci[0] - b.shift[0][x];
 				seen[nk][1] = ci[1] - b.shift[1][y];
 				seen[nk][2] = ci[2] - b.shift[2][z];
@@ -376,7 +391,14 @@ static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 			}
 	uint32_t cand[LZ_EDMD_GATHER];
 	uint8_t from[LZ_EDMD_GATHER];
-	int nc = 0, live = nk, st = LZ_OK;
+	int nc = 0, live = 0, st = LZ_OK;
+	for (int k = 0; k < nk; k++)  /* every cell's head, then its second: no walk yet */
+		nc += take(e->lists, at[k], k, cand + nc, from + nc);
+	for (int k = 0; k < nk; k++) {
+		nc += take(e->lists, at2[k], k, cand + nc, from + nc);
+		at[k] = e->next[at2[k]];  /* next[-1] = -1 */
+		live += at[k] >= 0;
+	}
 	while (live > 0 && st == LZ_OK) {
 		if (nc + nk > LZ_EDMD_GATHER) {  /* crowded cells: link what we have */
 			st = link_near(e, i, after, cand, from, nc, seen, f);
@@ -385,11 +407,7 @@ static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 		live = 0;
 		for (int k = 0; k < nk; k++) {
 			int32_t j = at[k];
-			cand[nc] = (uint32_t)j;
-			from[nc] = (uint8_t)k;
-			if (j >= 0)  /* link_near reads its centre: ask for it now */
-				__builtin_prefetch(blk(e->lists, (uint32_t)j)->c);
-			nc += j >= 0;
+			nc += take(e->lists, j, k, cand + nc, from + nc);
 			at[k] = e->next[j];  /* next[-1] = -1: a finished list stays finished */
 			live += at[k] >= 0;
 		}
@@ -696,8 +714,7 @@ void lz_edmd_list_fetch_ahead(const lz_edmd *e)
 	if (e->cal) {
 		if (e->cal->nnear == 0)
 			return;
-		c1 = lz_calendar_second(e->cal);
-		c2 = c1;
+		lz_calendar_next_items(e->cal, &c1, &c2);
 	} else if (h->n < 21) {
 		return;
 	} else if (h->arity == 4) {

@@ -112,6 +112,18 @@ static inline uint32_t lz_calendar_second(const lz_calendar *q)
 	return q->near[q->near[2].t < q->near[1].t ? 2 : 1].id;
 }
 
+/* The items most likely next after the top, as lz_heap_next_items guesses them in
+ * today's heap; both the root's earlier child (or the top itself) while today holds
+ * fewer than 7 events. For a caller that fetches ahead. O(1). */
+static inline void lz_calendar_next_items(const lz_calendar *q, uint32_t *second,
+                                          uint32_t *third)
+{
+	if (q->nnear >= 7)
+		lz_heap_nodes_next(q->near, second, third);
+	else
+		*second = *third = lz_calendar_second(q);
+}
+
 /* LZ_OK when the invariants above hold, else LZ_EDOM naming the first broken item.
  * O(cap + days). For tests and guards. */
 int lz_calendar_audit(const lz_calendar *q);

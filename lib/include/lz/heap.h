@@ -80,14 +80,19 @@ static inline double lz_heap_key(const lz_heap *h, uint32_t id) { return h->node
  * their data ahead: the root's earlier child (*second), and the earlier of that
  * child's sibling and its own earlier child (*third). A guess — a new key may come
  * first — that reads no more than the root's two levels below. Precondition
- * h->n >= 7. O(1). */
-static inline void lz_heap_next_items(const lz_heap *h, uint32_t *second, uint32_t *third)
+ * h->n >= 7 (lz_heap_nodes_next: the same on any binary heap of 7 nodes or more,
+ * node[0] its root). O(1). */
+static inline void lz_heap_nodes_next(const lz_heap_node *node, uint32_t *second,
+                                      uint32_t *third)
 {
-	const lz_heap_node *node = h->node;
 	size_t k1 = 1 + (node[2].t < node[1].t), k2 = k1 == 1 ? 2 : 1;
 	size_t kc = 2 * k1 + 1 + (node[2 * k1 + 2].t < node[2 * k1 + 1].t);
 	*second = node[k1].id;
 	*third = node[kc].t < node[k2].t ? node[kc].id : node[k2].id;
+}
+static inline void lz_heap_next_items(const lz_heap *h, uint32_t *second, uint32_t *third)
+{
+	lz_heap_nodes_next(h->node, second, third);
 }
 
 /* Ask the memory for item id's node (precondition: in the heap), or for its place in
