@@ -250,6 +250,35 @@ LZ_TEST(edmd_lists_keep_every_invariant_with_every_queue)
 }
 END_TEST
 
+LZ_TEST(edmd_lists_prefetching_changes_nothing_with_every_queue)
+{
+	/* the look ahead of lz_edmd_list_fetch_ahead (on from LZ_EDMD_FAR particles) only
+	 * asks the memory: turned on for a small fluid it must leave the same events and
+	 * the same state, bit for bit, whichever queue guesses the next events */
+	for (int k = 0; k < 3; k++) {
+		lz_edmd *a = lists_lattice(3, 2000, 0.49, LZ_EDMD_WALLS_NONE, 0, 1.4, queues[k], 17);
+		lz_edmd *b = lists_lattice(3, 2000, 0.49, LZ_EDMD_WALLS_NONE, 0, 1.4, queues[k], 17);
+		a->prefetch = 0;
+		b->prefetch = 1;
+		LZ_REQUIRE_TRUE(lz_edmd_run(a, 40000, INFINITY) == LZ_OK &&
+		                lz_edmd_run(b, 40000, INFINITY) == LZ_OK);
+		LZ_REQUIRE(a->collisions == b->collisions && a->rebuilds == b->rebuilds &&
+		           a->virial == b->virial && lz_edmd_time(a) == lz_edmd_time(b),
+		           "%s: with and without the look ahead, %llu / %llu collisions, %llu / %llu "
+		           "rebuilds, virial %.17g / %.17g", queue_name[k],
+		           (unsigned long long)a->collisions, (unsigned long long)b->collisions,
+		           (unsigned long long)a->rebuilds, (unsigned long long)b->rebuilds,
+		           a->virial, b->virial);
+		for (uint32_t i = 0; i < a->n; i++)
+			LZ_REQUIRE(memcmp(&a->p[i], &b->p[i], sizeof a->p[i]) == 0,
+			           "%s: particle %u is elsewhere with the look ahead", queue_name[k], i);
+		LZ_REQUIRE(a->rebuilds > 0, "%s: no list was rebuilt", queue_name[k]);
+		lz_edmd_free(a);
+		lz_edmd_free(b);
+	}
+}
+END_TEST
+
 LZ_TEST(edmd_lists_longer_than_their_block_chain_and_renumber)
 {
 	/* a shell far wider than the block was sized for: chunks, audited, renumbered */
