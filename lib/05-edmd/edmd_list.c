@@ -298,21 +298,18 @@ static int link_pair(lz_edmd *e, uint32_t i, uint32_t j)
 	return st ? st : add(e->lists, j, i);
 }
 
-/* i's neighbours before its list was built again: those that stay on it are still
- * on theirs (found), the others must take i off theirs. */
-typedef struct {
-	const uint32_t *nb;
-	int n;
-	uint8_t found[255];
-} former;
+/* lz_edmd_nbl.edge of a particle on the list being built again (rebuild): set on
+ * every former neighbour before the search, taken off those found again; a block
+ * carries it only inside rebuild. */
+#define FORMER 0x80
 
 /* Of the candidates cand[0 .. nc-1] (seen from the cells from[]: i's centre there is
  * seen[from]), those other than i (and above i when `after`) whose centres lie within
- * the shell of i's go on i's list, and i on theirs unless they are former neighbours
- * (f, may be NULL): the distances in one loop without a branch, then the links. LZ_OK
- * or add's error. */
+ * the shell of i's go on i's list, and i on theirs unless they are marked FORMER (it
+ * is there already; the mark comes off): the distances in one loop without a branch,
+ * then the links. LZ_OK or add's error. */
 static int link_near(lz_edmd *e, uint32_t i, int after, uint32_t *cand, const uint8_t *from,
-                     int nc, const double (*seen)[3], former *f)
+                     int nc, const double (*seen)[3])
 {
 	const lz_edmd_lists *l = e->lists;
 	double S2 = l->shell * l->shell;
@@ -328,10 +325,10 @@ static int link_near(lz_edmd *e, uint32_t i, int after, uint32_t *cand, const ui
 	for (int q = 0; q < nh; q++) {
 		uint32_t j = cand[q];
 		__builtin_prefetch(&e->p[j]);  /* i's prediction reads it next */
-		int k = 0;
-		while (f && k < f->n && f->nb[k] != j)
-			k++;
-		int st = f && k < f->n ? (f->found[k] = 1, add(e->lists, i, j)) : link_pair(e, i, j);
+		lz_edmd_nbl *bj = blk(l, j);
+		int was = bj->edge & FORMER;
+		bj->edge &= (uint8_t)~FORMER;
+		int st = was ? add(e->lists, i, j) : link_pair(e, i, j);
 		if (st != LZ_OK)
 			return st;
 	}
@@ -356,7 +353,7 @@ static inline int take(const lz_edmd_lists *l, int32_t j, int k, uint32_t *cand,
  * with the head, lz_edmd_list), then every cell's third, ... — so that the reads along
  * different cells' lists overlap instead of waiting on each other (link_near then
  * takes their distances). LZ_OK or grow's error. */
-static int gather(lz_edmd *e, uint32_t i, int after, former *f)
+static int gather(lz_edmd *e, uint32_t i, int after)
 {
 	double ci[3];
 	centre_of(e->lists, i, ci);
@@ -401,7 +398,7 @@ static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 	}
 	while (live > 0 && st == LZ_OK) {
 		if (nc + nk > LZ_EDMD_GATHER) {  /* crowded cells: link what we have */
-			st = link_near(e, i, after, cand, from, nc, seen, f);
+			st = link_near(e, i, after, cand, from, nc, seen);
 			nc = 0;
 		}
 		live = 0;
@@ -412,28 +409,36 @@ static int gather(lz_edmd *e, uint32_t i, int after, former *f)
 			live += at[k] >= 0;
 		}
 	}
-	return st == LZ_OK ? link_near(e, i, after, cand, from, nc, seen, f) : st;
+	return st == LZ_OK ? link_near(e, i, after, cand, from, nc, seen) : st;
 }
 
 /* i's list built again around where it is now. Most of its neighbours stay: they
  * keep i on their lists, and only those that left take it off theirs (the others'
- * blocks are not touched). LZ_OK or add's error. */
+ * lists are not touched). Which is which without a search: the former neighbours are
+ * marked FORMER, the search takes the mark off those it finds again. LZ_OK or add's
+ * error. */
 static int rebuild(lz_edmd *e, uint32_t i)
 {
 	lz_edmd_lists *l = e->lists;
 	lz_edmd_advance(e, &e->p[i], e->now);
 	uint32_t old[255];
-	former f = {old, 0, {0}};
-	const uint32_t *nb = neighbours(l, i, old, &f.n);
+	int n;
+	const uint32_t *nb = neighbours(l, i, old, &n);
 	if (nb != old)
-		memcpy(old, nb, (size_t)f.n * sizeof *old);
-	memset(f.found, 0, (size_t)f.n);
+		memcpy(old, nb, (size_t)n * sizeof *old);
+	for (int k = 0; k < n; k++)
+		blk(l, old[k])->edge |= FORMER;
 	forget(l, i);
 	recentre(e, i);
-	int st = gather(e, i, 0, &f);
-	for (int k = 0; k < f.n && st == LZ_OK; k++)
-		if (!f.found[k])
-			drop(l, old[k], i);
+	int st = gather(e, i, 0);
+	for (int k = 0; k < n; k++) {
+		lz_edmd_nbl *b = blk(l, old[k]);
+		if (b->edge & FORMER) {
+			b->edge &= (uint8_t)~FORMER;
+			if (st == LZ_OK)
+				drop(l, old[k], i);
+		}
+	}
 	return st;
 }
 
@@ -473,7 +478,7 @@ int lz_edmd_list_start(lz_edmd *e)
 	else
 		lz_heap_clear(e->heap);
 	for (uint32_t i = 0; i < e->n; i++) {
-		int st = gather(e, i, 1, NULL);
+		int st = gather(e, i, 1);
 		if (st != LZ_OK)
 			return st;
 	}
@@ -491,7 +496,8 @@ int lz_edmd_list_start(lz_edmd *e)
  * positive root of |d + v t| = δ (|d| < δ), computed without cancellation; 0 when it
  * is out already (round-off), INFINITY at rest. Under gravity g, the earlier time at
  * which |d| + |v| t + g t²/2 = δ, a bound. */
-static double skin_time(const double d[3], const double v[3], double skin, double g)
+static inline __attribute__((always_inline)) double
+skin_time(const double d[3], const double v[3], double skin, double g)
 {
 	double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 	double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -533,79 +539,93 @@ static double wall_time(const lz_edmd *e, uint8_t flags, const double r[3], cons
 	return best;
 }
 
-/* The earliest collision of i (at ri, vi now) with its neighbours, if before *best.
+/* The earliest collision of i (at ri, vi now) with its neighbours, if before best:
+ * its time from now (else best) returned, its partner in *ev.
  * Two passes without a branch on the data (whether a pair approaches is a coin toss
  * that a branch would miss half the time): the first keeps the pairs that approach
- * (b < 0), do not miss (disc > 0) and could close their gap c before *best even head
+ * (b < 0), do not miss (disc > 0) and could close their gap c before best even head
  * on (t >= c / 2|b|); the second roots only those. wrap and fall are constants at each
  * call (always inlined): a scene without gravity pays nothing for it. */
-static inline __attribute__((always_inline)) void
+static inline __attribute__((always_inline)) double
 neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3],
-                 const double vi[3], double *best, lz_edmd_event *ev, int wrap, int fall)
+                 const double vi[3], double best, lz_edmd_event *ev, int wrap, int fall)
 {
 	const double now = e->now, g = e->g, L = e->L, half = 0.5 * e->L;
-	/* *best may be +INFINITY (a particle at rest alone): 2 b · bound must not be 0 · ∞ */
-	const double bound = *best < 1e300 ? *best : 1e300;
-	typedef double v2 __attribute__((vector_size(16)));
-	typedef long long m2 __attribute__((vector_size(16)));
-	v2 kb[128], kc[128], kd[128];  /* pair k's b, c and disc: kb[k / 2][k % 2] */
+	/* best may be +INFINITY (a particle at rest alone): 2 b · bound must not be 0 · ∞ */
+	const double bound = best < 1e300 ? best : 1e300;
+	typedef double v4 __attribute__((vector_size(32)));
+	typedef long long m4 __attribute__((vector_size(32)));
+	v4 kb[64], kc[64], kd[64];  /* pair k's b, c and disc: kb[k / 4][k % 4] */
 	uint64_t keep[4] = {0, 0, 0, 0};  /* bit k: pair k may collide before the bound */
-	const v2 vnow = {now, now}, vx = {ri[0], ri[0]}, vy = {ri[1], ri[1]}, vz = {ri[2], ri[2]};
-	const v2 wx = {vi[0], vi[0]}, wy = {vi[1], vi[1]}, wz = {vi[2], vi[2]};
-	const v2 one = {1, 1}, zero = {0, 0}, twob = {2 * bound, 2 * bound};
-	const v2 vL = {L, L}, vh = {half, half};
-	for (int k = 0; k < n; k += 2) {
-		const lz_edmd_particle *p = &e->p[nb[k]], *q = &e->p[nb[k + 1 < n ? k + 1 : k]];
-		v2 dt = vnow - (v2){p->t0, q->t0};
-		v2 ux = (v2){p->v[0], q->v[0]}, uy = (v2){p->v[1], q->v[1]}, uz = (v2){p->v[2], q->v[2]};
-		v2 d0 = (v2){p->r[0], q->r[0]} + ux * dt - vx;
-		v2 d1 = (v2){p->r[1], q->r[1]} + uy * dt - vy;
-		v2 d2 = (v2){p->r[2], q->r[2]} + uz * dt - vz;
+	const v4 zero = {0, 0, 0, 0}, one = zero + 1, twob = zero + 2 * bound;
+	const v4 vnow = zero + now, vx = zero + ri[0], vy = zero + ri[1], vz = zero + ri[2];
+	const v4 wx = zero + vi[0], wy = zero + vi[1], wz = zero + vi[2];
+	const v4 vL = zero + L, vh = zero + half;
+	for (int k = 0; k < n; k += 4) {
+		const lz_edmd_particle *p = &e->p[nb[k]];
+		const lz_edmd_particle *q = &e->p[nb[k + 1 < n ? k + 1 : k]];
+		const lz_edmd_particle *s = &e->p[nb[k + 2 < n ? k + 2 : k]];
+		const lz_edmd_particle *u = &e->p[nb[k + 3 < n ? k + 3 : k]];
+		v4 dt = vnow - (v4){p->t0, q->t0, s->t0, u->t0};
+		v4 ux = {p->v[0], q->v[0], s->v[0], u->v[0]};
+		v4 uy = {p->v[1], q->v[1], s->v[1], u->v[1]};
+		v4 uz = {p->v[2], q->v[2], s->v[2], u->v[2]};
+		v4 d0 = (v4){p->r[0], q->r[0], s->r[0], u->r[0]} + ux * dt - vx;
+		v4 d1 = (v4){p->r[1], q->r[1], s->r[1], u->r[1]} + uy * dt - vy;
+		v4 d2 = (v4){p->r[2], q->r[2], s->r[2], u->r[2]} + uz * dt - vz;
 		ux -= wx;
 		uy -= wy;
 		uz -= wz;
 		if (fall) {
-			v2 g2 = {g, g};
-			d0 -= 0.5 * g2 * dt * dt;
-			ux -= g2 * dt;
+			v4 g4 = zero + g;
+			d0 -= 0.5 * g4 * dt * dt;
+			ux -= g4 * dt;
 		}
 		if (wrap) {
 			if (!e->wall[0])
-				d0 -= vL * __builtin_convertvector((d0 < -vh) - (d0 > vh), v2);
+				d0 -= vL * __builtin_convertvector((d0 < -vh) - (d0 > vh), v4);
 			if (!e->wall[1])
-				d1 -= vL * __builtin_convertvector((d1 < -vh) - (d1 > vh), v2);
+				d1 -= vL * __builtin_convertvector((d1 < -vh) - (d1 > vh), v4);
 			if (!e->wall[2])
-				d2 -= vL * __builtin_convertvector((d2 < -vh) - (d2 > vh), v2);
+				d2 -= vL * __builtin_convertvector((d2 < -vh) - (d2 > vh), v4);
 		}
-		v2 b = d0 * ux + d1 * uy + d2 * uz;
-		v2 c = d0 * d0 + d1 * d1 + d2 * d2 - one;
-		v2 disc = b * b - (ux * ux + uy * uy + uz * uz) * c;
-		m2 ok = (b < zero) & (disc > zero) & (c + b * twob < zero);
-		kb[k / 2] = b;
-		kc[k / 2] = c;
-		kd[k / 2] = disc;
-		uint64_t bits = (uint64_t)(ok[0] & 1) | ((uint64_t)(ok[1] & 1) << 1);
-		keep[k / 64] |= (bits & (k + 1 < n ? 3u : 1u)) << (k % 64);
+		v4 b = d0 * ux + d1 * uy + d2 * uz;
+		v4 c = d0 * d0 + d1 * d1 + d2 * d2 - one;
+		v4 disc = b * b - (ux * ux + uy * uy + uz * uz) * c;
+		m4 ok = (b < zero) & (disc > zero) & (c + b * twob < zero);
+		kb[k / 4] = b;
+		kc[k / 4] = c;
+		kd[k / 4] = disc;
+		uint64_t bits = (uint64_t)((ok[0] & 1) | (ok[1] & 2) | (ok[2] & 4) | (ok[3] & 8));
+		int left = n - k < 4 ? n - k : 4;
+		keep[k / 64] |= (bits & ((1u << left) - 1)) << (k % 64);
 	}
 	double first = bound;
 	int who = -1;
 	for (int w = 0; w < 4; w++)
 		for (uint64_t m = keep[w]; m; m &= m - 1) {
 			int k = 64 * w + __builtin_ctzll(m);
-			double bk = kb[k / 2][k % 2], ck = kc[k / 2][k % 2], dk = kd[k / 2][k % 2];
+			double bk = kb[k / 4][k % 4], ck = kc[k / 4][k % 4], dk = kd[k / 4][k % 4];
 			double cp = 0.5 * (ck + fabs(ck));  /* touching: t = 0 */
 			double t = cp / (-bk + sqrt(dk));
 			int earlier = t < first;
 			who = earlier ? k : who;
 			first = earlier ? t : first;
 		}
-	if (who >= 0) {
-		*best = first;
-		ev->partner = (int32_t)nb[who];
-		ev->pcount = e->p[nb[who]].count;
-	}
+	if (who < 0)
+		return best;
+	ev->partner = (int32_t)nb[who];
+	ev->pcount = e->p[nb[who]].count;
+	return first;
 }
 
+/* On x86-64 Linux the prediction is compiled twice, for processors with AVX2 (a
+ * vector holds four pairs) and for any x86-64 (two vectors of two), and the loader
+ * picks one. Both do the same IEEE operations in the same order, without fused
+ * multiply-adds (ISO C: no contraction), so they give the same bits. */
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
 int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
 {
 	const lz_edmd_lists *l = e->lists;
@@ -629,11 +649,11 @@ int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
 	int n;
 	const uint32_t *nb = neighbours(l, i, buf, &n);
 	if (e->g > 0)
-		neighbours_first(e, nb, n, ri, vi, &best, &ev, flags & 1, 1);
+		best = neighbours_first(e, nb, n, ri, vi, best, &ev, flags & 1, 1);
 	else if (flags & 1)
-		neighbours_first(e, nb, n, ri, vi, &best, &ev, 1, 0);
+		best = neighbours_first(e, nb, n, ri, vi, best, &ev, 1, 0);
 	else
-		neighbours_first(e, nb, n, ri, vi, &best, &ev, 0, 0);
+		best = neighbours_first(e, nb, n, ri, vi, best, &ev, 0, 0);
 	e->ev[i] = ev;
 	if (e->cal)
 		return lz_calendar_set(e->cal, i, e->now + best);

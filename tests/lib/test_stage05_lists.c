@@ -237,7 +237,9 @@ LZ_TEST(edmd_lists_keep_every_invariant_with_every_queue)
 			double eta, g, shell;
 		} c[] = {{3, LZ_EDMD_WALLS_NONE, 0.49, 0, 1.4}, {2, LZ_EDMD_WALLS_NONE, 0.69, 0, 1.8},
 		         {3, LZ_EDMD_WALLS_BOX, 0.3, 0, 1.5}, {2, LZ_EDMD_WALLS_X, 0.2, 2, 2.2},
-		         {3, LZ_EDMD_WALLS_NONE, 0.1, 0, 3.0}};
+		         {3, LZ_EDMD_WALLS_NONE, 0.1, 0, 3.0},
+		         /* lists of 150 and more: the prediction's later words of pairs */
+		         {3, LZ_EDMD_WALLS_NONE, 0.3, 0, 4.0}};
 		for (size_t s = 0; s < sizeof c / sizeof c[0]; s++) {
 			snprintf(what, sizeof what, "%dD, η = %g, walls %d, g = %g, shell %g, %s", c[s].dim,
 			         c[s].eta, c[s].walls, c[s].g, c[s].shell, queue_name[k]);
