@@ -619,11 +619,12 @@ neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3]
 	return first;
 }
 
-/* On x86-64 Linux the prediction is compiled twice, for processors with AVX2 (a
- * vector holds four pairs) and for any x86-64 (two vectors of two), and the loader
+/* With gcc on x86-64 Linux the prediction is compiled twice, for processors with AVX2
+ * (a vector holds four pairs) and for any x86-64 (two vectors of two), and the loader
  * picks one. Both do the same IEEE operations in the same order, without fused
- * multiply-adds (ISO C: no contraction), so they give the same bits. */
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__)
+ * multiply-adds (ISO C: no contraction), so they give the same bits. (clang would
+ * need the attribute on the first declaration, in the header.) */
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
