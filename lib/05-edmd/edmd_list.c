@@ -191,6 +191,8 @@ int lz_edmd_list_cells(int dim, size_t n, double L, double shell)
 	return m < 3 ? 0 : (int)m;
 }
 
+static int wide_runs(void);
+
 lz_edmd_lists *lz_edmd_list_alloc(const lz_edmd *e, double shell)
 {
 	lz_edmd_lists *l = calloc(1, sizeof *l);
@@ -207,6 +209,7 @@ lz_edmd_lists *lz_edmd_list_alloc(const lz_edmd *e, double shell)
 	l->stride = sizeof(lz_edmd_nbl) + l->cap * sizeof(uint32_t);
 	l->spare = NONE;
 	l->block = lz_bigmem_alloc(e->n * l->stride);
+	l->wide = wide_runs();
 	if (!l->block) {
 		lz_edmd_list_free(l);
 		return lz_error(LZ_ENOMEM, "no memory for the neighbour lists of %zu particles",
@@ -619,15 +622,8 @@ neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3]
 	return first;
 }
 
-/* With gcc on x86-64 Linux the prediction is compiled twice, for processors with AVX2
- * (a vector holds four pairs) and for any x86-64 (two vectors of two), and the loader
- * picks one. Both do the same IEEE operations in the same order, without fused
- * multiply-adds (ISO C: no contraction), so they give the same bits. (clang would
- * need the attribute on the first declaration, in the header.) */
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-#endif
-int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
+/* The prediction, inlined into its two builds below. */
+static inline __attribute__((always_inline)) int predict(lz_edmd *e, uint32_t i)
 {
 	const lz_edmd_lists *l = e->lists;
 	double ri[3], vi[3], d[3];
@@ -665,6 +661,47 @@ int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
 	else
 		(in ? lz_heap_update : lz_heap_push)(h, i, e->now + best);
 	return LZ_OK;
+}
+
+/* The prediction compiled twice: for any processor, and, with gcc or clang on x86-64,
+ * for those with AVX2 (a vector holds four pairs; else two vectors of two). Both do
+ * the same IEEE operations in the same order, without fused multiply-adds (ISO C: no
+ * contraction), so they give the same bits — which a test checks by running one
+ * system with each (lz_edmd_list_wide). */
+static int predict_any(lz_edmd *e, uint32_t i)
+{
+	return predict(e, i);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx2"))) static int predict_wide(lz_edmd *e, uint32_t i)
+{
+	return predict(e, i);
+}
+
+/* 1 when this processor has AVX2. */
+static int wide_runs(void)
+{
+	__builtin_cpu_init();
+	return __builtin_cpu_supports("avx2") != 0;
+}
+#else
+#define predict_wide predict_any
+static int wide_runs(void)
+{
+	return 0;
+}
+#endif
+
+int lz_edmd_list_predict(lz_edmd *e, uint32_t i)
+{
+	return e->lists->wide ? predict_wide(e, i) : predict_any(e, i);
+}
+
+int lz_edmd_list_wide(lz_edmd *e, int wide)
+{
+	e->lists->wide = wide && wide_runs();
+	return e->lists->wide;
 }
 
 /* ---- the event ---- */

@@ -482,6 +482,7 @@ typedef struct lz_edmd_lists {
 	size_t nchunk, capchunk;
 	uint32_t spare;      /* the first free chunk (a list through next) */
 	size_t chunks;       /* chunks in use */
+	int wide;            /* 1: predictions by the AVX2 build (lz_edmd_list_wide) */
 } lz_edmd_lists;
 
 /* The default shell: the S that the measurements of lesson 05 §10 found fastest at
@@ -506,10 +507,15 @@ void lz_edmd_list_free(lz_edmd_lists *l);
 int lz_edmd_list_start(lz_edmd *e);
 
 /* Predict particle i at now from its list, its skin and, when near one, the walls:
- * ev[i] and its key in the queue. Four pairs to a vector; with gcc on x86-64 Linux
- * built for AVX2 and for any x86-64, the same bits either way. LZ_OK, or LZ_ENOMEM
- * (a calendar day that cannot grow). O(neighbours + log n). */
+ * ev[i] and its key in the queue. Four pairs to a vector; built for any processor
+ * and, on x86-64 with gcc or clang, for AVX2, the same bits either way.
+ * LZ_OK, or LZ_ENOMEM (a calendar day that cannot grow). O(neighbours + log n). */
 int lz_edmd_list_predict(lz_edmd *e, uint32_t i);
+
+/* Which build of lz_edmd_list_predict e's lists use: wide = 1 the AVX2 one when the
+ * processor has AVX2 (the default), 0 the one for any processor. Returns the build
+ * now in use (1: AVX2). For the test that both give the same bits. O(1). */
+int lz_edmd_list_wide(lz_edmd *e, int wide);
 
 /* lz_edmd_step with lists: a collision (or a stale one) as with cells; a skin event
  * builds the particle's list again (rebuilds + 1); a wall face bounces. 0, -1 when
