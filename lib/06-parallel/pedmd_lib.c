@@ -149,20 +149,24 @@ static lz_edmd *copy_system(const lz_edmd *s)
 	return e;
 }
 
-/* Put the present particles into their cells in s's list order. */
-static void fill_cells(lz_pedmd *r, const lz_edmd *s)
+/* Put the present particles into their cells in s's list order. s may be r's own
+ * system (lz_pedmd_adopt): every list is read before any is written. LZ_OK or
+ * LZ_ENOMEM. O(N + cells), 4 bytes a particle for the while. */
+static int fill_cells(lz_pedmd *r, const lz_edmd *s)
 {
+	uint32_t *seq = malloc(s->n * sizeof *seq), k = 0;  /* the lists one after another */
+	if (!seq)
+		return lz_error(LZ_ENOMEM, "no memory to file %zu particles", s->n);
+	for (uint32_t c = 0; c < s->ncells; c++)
+		for (int32_t j = s->list[c].head; j >= 0; j = s->next[j])
+			seq[k++] = (uint32_t)j;
 	lz_edmd *e = r->e;
 	lz_edmd_cell_clear(e);
-	int32_t *row = (int32_t *)r->scratch;  /* a cell's list, reversed */
-	for (uint32_t c = 0; c < s->ncells; c++) {
-		size_t k = 0;
-		for (int32_t j = s->list[c].head; j >= 0; j = s->next[j])
-			row[k++] = j;
-		while (k-- > 0)
-			if (r->role[row[k]] != LZ_PEDMD_ABSENT)
-				lz_edmd_cell_insert(e, (uint32_t)row[k], c);
-	}
+	while (k-- > 0)  /* each inserted at its list's head: backwards keeps the order */
+		if (r->role[seq[k]] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, seq[k], e->p[seq[k]].cell);
+	free(seq);
+	return LZ_OK;
 }
 
 /* Whether cell c's block holds a HALO or BORDER cell (r->near). */
@@ -191,8 +195,10 @@ static void mark_near(lz_pedmd *r)
 
 /* The rank's share of system s under its domains r->d: classes, roles, own and ghost
  * events from s's heap keys and events, cells in s's list order, the heap, the read
- * stamps cleared, the clock at s's. r->e already holds s's records (copy_system). */
-static void take_system(lz_pedmd *r, const lz_edmd *s)
+ * stamps cleared, the clock at s's. r->e already holds s's records (copy_system), or
+ * is s itself (lz_pedmd_adopt, lz_pedmd_take): s's keys are read before its heap is
+ * emptied, its lists before they are rebuilt. */
+static int take_system(lz_pedmd *r, const lz_edmd *s)
 {
 	size_t n = s->n, nc = s->ncells;
 	lz_pedmd_classify(r->e, r->d, r->rank, r->cls);
@@ -209,7 +215,9 @@ static void take_system(lz_pedmd *r, const lz_edmd *s)
 		r->ghost[i] = ev;
 		r->heard[i] = -INFINITY;
 	}
-	fill_cells(r, s);
+	if (fill_cells(r, s) != LZ_OK)
+		return LZ_ENOMEM;
+	lz_heap_clear(e->heap);
 	for (uint32_t i = 0; i < n; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED)
 			lz_heap_push(e->heap, i, r->own[i].t);
@@ -217,6 +225,7 @@ static void take_system(lz_pedmd *r, const lz_edmd *s)
 	for (uint32_t i = 0; i < n; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED && r->cls[e->p[i].cell] == LZ_PEDMD_BORDER)
 			lz_pedmd_retarget(r, i);
+	return LZ_OK;
 }
 
 /* size bytes of zeros in huge pages where there are any (lz_bigmem_alloc); NULL when
@@ -227,24 +236,22 @@ static void *zeroed(size_t size)
 	return v ? memset(v, 0, size) : NULL;
 }
 
-lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
-                         const lz_pedmd_params *p)
+/* A rank whose own system is e (copy_system of s, or s itself), its share of s
+ * taken; e is freed on failure. */
+static lz_pedmd *rank_of(lz_edmd *e, const lz_edmd *s, const lz_pedmd_domains *d,
+                         lz_msg *msg, const lz_pedmd_params *p)
 {
-	if (check_params(p))
-		return NULL;
-	if (d->ncells != s->ncells || d->P != lz_msg_size(msg))
-		return lz_error(LZ_EINVAL, "the decomposition has %zu cells for %d ranks, the system "
-		                "%zu cells and the messages %d ranks", d->ncells, d->P, s->ncells,
-		                lz_msg_size(msg)), NULL;
-	lz_pedmd *r = calloc(1, sizeof *r);
-	if (!r)
+	lz_pedmd *r = e ? calloc(1, sizeof *r) : NULL;
+	if (!r) {
+		lz_edmd_free(e);
 		return lz_error(LZ_ENOMEM, "no memory for a rank"), NULL;
+	}
+	r->e = e;
 	r->d = d;
 	r->msg = msg;
 	r->p = *p;
 	r->rank = lz_msg_rank(msg);
 	size_t n = s->n, nc = s->ncells;
-	r->e = copy_system(s);
 	/* Arrays read at random in every event: huge pages where the kernel has them (at
 	 * 10^6 particles each would otherwise miss the address translation as well as the
 	 * cache; lz/bigmem.h). */
@@ -258,18 +265,65 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 	r->heard = lz_bigmem_alloc(n * sizeof *r->heard);
 	r->mark = zeroed(n * sizeof *r->mark);
 	r->rmark = zeroed(nc * sizeof *r->rmark);
-	r->scratch = malloc((n > nc ? n : nc) * sizeof *r->scratch);
-	if (!r->e || !r->cls || !r->near || !r->read || !r->load || !r->role || !r->own ||
-	    !r->ghost || !r->heard || !r->mark || !r->rmark || !r->scratch) {
+	if (!r->cls || !r->near || !r->read || !r->load || !r->role || !r->own || !r->ghost ||
+	    !r->heard || !r->mark || !r->rmark) {
 		lz_pedmd_free(r);
 		return lz_error(LZ_ENOMEM, "no memory for a rank of %zu particles", n), NULL;
 	}
-	take_system(r, s);
+	if (take_system(r, s) != LZ_OK) {
+		lz_pedmd_free(r);
+		return NULL;
+	}
 	r->T = r->e->t_base + r->e->now;
 	r->width = p->window;
 	r->forced_end = NAN;
 	r->t_error = INFINITY;
 	return r;
+}
+
+/* The checks common to lz_pedmd_alloc and lz_pedmd_adopt: LZ_OK or LZ_EINVAL. */
+static int check_rank(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
+                      const lz_pedmd_params *p)
+{
+	if (check_params(p))
+		return LZ_EINVAL;
+	if (d->ncells != s->ncells || d->P != lz_msg_size(msg))
+		return lz_error(LZ_EINVAL, "the decomposition has %zu cells for %d ranks, the system "
+		                "%zu cells and the messages %d ranks", d->ncells, d->P, s->ncells,
+		                lz_msg_size(msg));
+	return LZ_OK;
+}
+
+lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
+                         const lz_pedmd_params *p)
+{
+	if (check_rank(s, d, msg, p))
+		return NULL;
+	return rank_of(copy_system(s), s, d, msg, p);
+}
+
+lz_pedmd *lz_pedmd_adopt(lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
+                         const lz_pedmd_params *p)
+{
+	int st = check_rank(s, d, msg, p);
+	if (st == LZ_OK && (s->lists || s->cal || s->heap->arity != 2 || s->rebase_auto ||
+	                    s->sort_every))
+		st = lz_error(LZ_EINVAL, "a rank adopts a system with cells and the binary heap, "
+		              "re-based only when asked and never renumbered (lz/pedmd.h)");
+	if (st != LZ_OK) {
+		lz_edmd_free(s);
+		return NULL;
+	}
+	lz_edmd_reset_counts(s);
+	return rank_of(s, s, d, msg, p);
+}
+
+lz_edmd *lz_pedmd_release(lz_pedmd *r)
+{
+	lz_edmd *e = r->e;
+	r->e = NULL;
+	lz_pedmd_free(r);
+	return e;
 }
 
 /* ---- moving the cuts ---- */
@@ -355,18 +409,14 @@ int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
 		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
 		                "message waiting", r->rank);
-	lz_edmd *s, *e;
+	lz_edmd *s;
 	int st = picture(r, all, n, &s);
 	if (st != LZ_OK)
 		return st;
-	if (!(e = copy_system(s))) {
-		lz_edmd_free(s);
-		return LZ_ENOMEM;
-	}
 	lz_edmd_free(r->e);
-	r->e = e;
-	take_system(r, s);
-	lz_edmd_free(s);
+	r->e = s;  /* the picture becomes the rank's own system */
+	if ((st = take_system(r, s)) != LZ_OK)
+		return st;
 	r->counts.balances++;
 	return LZ_OK;
 }
@@ -412,7 +462,6 @@ void lz_pedmd_free(lz_pedmd *r)
 	lz_bigmem_free(r->mark);
 	lz_bigmem_free(r->rmark);
 	free(r->stamps);
-	free(r->scratch);
 	free(r->wait);
 	free(r->wait0);
 	free(r->saved);

@@ -284,6 +284,74 @@ LZ_TEST(pedmd_refuses_bad_parameters_and_audits)
 }
 END_TEST
 
+/* Ranks a (lz_pedmd_alloc) and b (lz_pedmd_adopt) of the same start: the same roles,
+ * events, records, cell lists (in the same order: predictions read them so) and heap. */
+static void same_rank(const lz_pedmd *a, const lz_pedmd *b, int k)
+{
+	const lz_edmd *ea = a->e, *eb = b->e;
+	for (uint32_t i = 0; i < ea->n; i++) {
+		int present = a->role[i] != LZ_PEDMD_ABSENT;
+		LZ_REQUIRE(a->role[i] == b->role[i] && a->heard[i] == b->heard[i] &&
+		           memcmp(&a->own[i], &b->own[i], sizeof a->own[i]) == 0 &&
+		           memcmp(&a->ghost[i], &b->ghost[i], sizeof a->ghost[i]) == 0 &&
+		           (!present || memcmp(&ea->p[i], &eb->p[i], sizeof ea->p[i]) == 0),
+		           "rank %d: particle %u: role %d / %d, own, ghost or record differ between "
+		           "the copy and the adopted system", k, i, a->role[i], b->role[i]);
+		int in = lz_heap_contains(ea->heap, i);
+		LZ_REQUIRE(in == lz_heap_contains(eb->heap, i) &&
+		           (!in || lz_heap_key(ea->heap, i) == lz_heap_key(eb->heap, i)),
+		           "rank %d: particle %u in the heap %d / %d", k, i, in,
+		           lz_heap_contains(eb->heap, i));
+	}
+	for (uint32_t c = 0; c < ea->ncells; c++) {
+		int32_t x = ea->list[c].head, y = eb->list[c].head;
+		for (; x >= 0 && x == y; x = ea->next[x], y = eb->next[y])
+			;
+		LZ_REQUIRE(x == y, "rank %d: cell %u lists %d where the adopted system lists %d", k,
+		           c, x, y);
+	}
+}
+
+LZ_TEST(pedmd_adopt_takes_the_system_as_alloc_copies_it)
+{
+	/* lz-mpi's ranks take the start itself (one system a process): each must be the
+	 * rank lz_pedmd_alloc makes from a copy, the cell lists in the same order */
+	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 1, 2, 0, 1, 1e-6, 1e-6, 1e-6};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
+	lz_edmd *s = gas(3, 2000, 0.3, 5);
+	lz_stub *stub = lz_stub_alloc(&sp);
+	lz_pedmd_domains *d = lz_pedmd_domains_alloc(s, 3, LZ_PEDMD_MORTON);
+	LZ_REQUIRE_TRUE(stub && d && lz_edmd_run(s, 3000, INFINITY) == LZ_OK);
+	for (int k = 0; k < 3; k++) {
+		lz_edmd *t = gas(3, 2000, 0.3, 5);
+		LZ_REQUIRE_TRUE(lz_edmd_run(t, 3000, INFINITY) == LZ_OK);
+		lz_pedmd *a = lz_pedmd_alloc(s, d, lz_stub_rank(stub, k), &pp);
+		lz_pedmd *b = lz_pedmd_adopt(t, d, lz_stub_rank(stub, k), &pp);
+		LZ_REQUIRE(a && b, "rank %d: %s", k, lz_error_message());
+		LZ_REQUIRE(lz_pedmd_system(b) == t, "rank %d: lz_pedmd_adopt made a copy", k);
+		same_rank(a, b, k);
+		lz_pedmd_free(a);
+		lz_edmd *back = lz_pedmd_release(b);
+		LZ_REQUIRE(back == t, "rank %d: lz_pedmd_release gave back another system", k);
+		lz_edmd_free(back);
+	}
+	/* a system with lists cannot be a rank's: refused, and freed */
+	lz_edmd_params q = {3, 500, 0.3, 1, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_LIST, 0, 0};
+	lz_edmd *l = lz_edmd_alloc(&q);
+	ck_assert_ptr_nonnull(l);
+	l->rebase_auto = 0;
+	lz_pedmd_domains *dl = lz_pedmd_domains_alloc(l, 3, LZ_PEDMD_MORTON);
+	ck_assert_ptr_nonnull(dl);
+	ck_assert_msg(lz_pedmd_adopt(l, dl, lz_stub_rank(stub, 0), &pp) == NULL &&
+	              lz_test_last_error() == LZ_EINVAL && strstr(lz_error_message(), "cells"),
+	              "a system with lists adopted: %s", lz_error_message());
+	lz_pedmd_domains_free(dl);
+	lz_pedmd_domains_free(d);
+	lz_stub_free(stub);
+	lz_edmd_free(s);
+}
+END_TEST
+
 /* n disks in a box of packing 0.15, all in its bottom third (x < L/3, on a square
  * lattice of spacing 1.2) with Maxwell velocities, gravity 1 along -x: the events
  * happen where the disks are. */

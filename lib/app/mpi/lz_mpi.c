@@ -219,28 +219,38 @@ static int collect(const lz_pedmd *r, int rank, int size, int everywhere,
 	return LZ_OK;
 }
 
-/* The owned particles of every rank written into `out` on rank 0 (its cells are not
- * updated: the serial picture, as lz_pedmd_sim_gather). LZ_OK, or an error on rank 0
+/* What a process holds. */
+typedef struct {
+	lz_scene *s;
+	lz_pedmd_scene p;
+	lz_pedmd_domains *d;
+	lz_msg *msg;
+	lz_pedmd *r;
+	double pilot_ratio;  /* balance = pilot: the busiest rank's share, pilot cuts / even */
+} lz_mpi_run;
+
+/* The owned particles of every rank written on rank 0 into the system of its rank,
+ * which then ends (lz_pedmd_release; its cells are not updated): the serial picture,
+ * as lz_pedmd_sim_gather, in x->p.system on every rank. LZ_OK, or an error on rank 0
  * when a particle came never or twice. Collective. */
-static int gather(const lz_pedmd *r, int rank, int size, lz_edmd *out)
+static int gather(lz_mpi_run *x, int rank, int size)
 {
-	const lz_edmd *e = lz_pedmd_system(r);
 	lz_pedmd_message *all;
 	size_t n;
-	collect(r, rank, size, 0, &all, &n);
-	uint8_t *seen = rank == 0 ? calloc(e->n, 1) : NULL;
-	int st = rank == 0 && !seen ? lz_error(LZ_ENOMEM, "no memory for %zu marks", e->n) : LZ_OK;
+	collect(x->r, rank, size, 0, &all, &n);
+	lz_edmd *out = x->p.system = lz_pedmd_release(x->r);
+	x->r = NULL;
+	uint8_t *seen = rank == 0 ? calloc(out->n, 1) : NULL;
+	int st = rank == 0 && !seen ? lz_error(LZ_ENOMEM, "no memory for %zu marks", out->n) : LZ_OK;
 	for (size_t q = 0; rank == 0 && q < n && st == LZ_OK; q++) {
 		uint32_t i = all[q].id;
-		if (i >= e->n || seen[i]++)
+		if (i >= out->n || seen[i]++)
 			st = lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
 		else
 			out->p[i] = all[q].p;
 	}
-	if (rank == 0 && st == LZ_OK && n != e->n)
-		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", n, e->n);
-	out->t_base = e->t_base;  /* the particles' times are in the ranks' time base */
-	out->now = e->now;
+	if (rank == 0 && st == LZ_OK && n != out->n)
+		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", n, out->n);
 	free(all);
 	free(seen);
 	return st;
@@ -355,15 +365,6 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 	fflush(stdout);
 }
 
-/* What a process holds. */
-typedef struct {
-	lz_scene *s;
-	lz_pedmd_scene p;
-	lz_pedmd_domains *d;
-	lz_msg *msg;
-	lz_pedmd *r;
-	double pilot_ratio;  /* balance = pilot: the busiest rank's share, pilot cuts / even */
-} lz_mpi_run;
 
 /* Scene, seeds, system and domains, agreed on after every step that can fail (the
  * steps between are collective): the agreed status. */
@@ -385,7 +386,9 @@ static int setup(int argc, char **argv, int rank, int size, lz_mpi_run *x)
 		return agreed;
 	if (!(x->msg = lz_msg_mpi_open()))  /* collective: a failure here stops everyone */
 		abort_run(rank, last_code);
-	x->r = lz_pedmd_alloc(x->p.system, x->d, x->msg, &x->p.params);
+	/* the rank takes the system itself: a process holds one copy of it, not two */
+	x->r = lz_pedmd_adopt(x->p.system, x->d, x->msg, &x->p.params);
+	x->p.system = NULL;
 	agree(x->r ? LZ_OK : last_code, rank, size, &agreed);
 	return agreed;
 }
@@ -435,7 +438,7 @@ int main(int argc, char **argv)
 
 	/* The results, on rank 0. */
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
-	st = gather(x.r, rank, size, x.p.system);
+	st = gather(&x, rank, size);
 	if (rank == 0 && st == LZ_OK)
 		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {

@@ -70,8 +70,11 @@
  * the committed events, their count, and the final positions and velocities equal the
  * serial run's bit for bit.
  *
- * Units as lz/edmd.h. Memory: each rank holds arrays for all N particles (about 150
- * bytes per particle per rank) plus what a window saves.
+ * Units as lz/edmd.h. Memory: each rank holds arrays for all N particles: its system
+ * (a copy of the start, or the start itself with lz_pedmd_adopt) and 45 bytes a
+ * particle of its own (role, own and ghost events, last message, save mark), 29 a
+ * cell (class, read stamp and its mark, load, place on the curve), plus what a window
+ * saves.
  */
 #ifndef LZ_PEDMD_H
 #define LZ_PEDMD_H
@@ -222,7 +225,6 @@ typedef struct lz_pedmd {
 	double clock;                 /* the latest time the rank has reached (relative);
 	                                 e->now equals it except while a late message is
 	                                 applied at its own, earlier time */
-	double *scratch;              /* max(N, cells) doubles of room for the set-up */
 	/* messages that wait for the rank's clock: a min-heap by time */
 	lz_pedmd_message *wait;
 	size_t nwait, capwait;
@@ -405,7 +407,17 @@ void lz_pedmd_domains_free(lz_pedmd_domains *d);
  * keeps its owned particles and ghosts. NULL with lz_error. O(N + cells). */
 lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
                          const lz_pedmd_params *p);
+/* The same, but the rank takes s itself as its own system rather than a copy (one
+ * rank a process, as in lz-mpi: the process then holds one system, not two). s must
+ * have cells and the binary heap, rebase_auto = 0 and sort_every = 0; it belongs to
+ * the rank from then on (NULL with lz_error: then s is freed). O(N + cells). */
+lz_pedmd *lz_pedmd_adopt(lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
+                         const lz_pedmd_params *p);
 void lz_pedmd_free(lz_pedmd *r);
+/* Free the rank but keep its system, and return it: all N records in the global
+ * numbering, owned ones up to date (the frame into which lz-mpi gathers the run's
+ * picture). O(1). */
+lz_edmd *lz_pedmd_release(lz_pedmd *r);
 
 /* One turn of the rank's work (lz_work_fn for the stub, or a loop under MPI): run
  * towards t_stop (absolute time) window by window. */
