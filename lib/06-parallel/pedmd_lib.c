@@ -347,17 +347,26 @@ int lz_pedmd_load_since(lz_pedmd *r, double *delta)
 	return LZ_OK;
 }
 
-size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
+size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *out,
+                           size_t most)
 {
 	const lz_edmd *e = r->e;
 	size_t k = 0;
-	for (uint32_t i = 0; i < e->n; i++)
+	uint32_t i = *from;
+	for (; i < e->n && k < most; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED) {
 			if (out)
 				out[k] = (lz_pedmd_message){e->now, i, LZ_PEDMD_MIGRATE, e->p[i], r->own[i]};
 			k++;
 		}
+	*from = i;
 	return k;
+}
+
+size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
+{
+	uint32_t from = 0;
+	return lz_pedmd_owned_part(r, &from, out, SIZE_MAX);
 }
 
 /* The serial picture that all[0 .. n-1] make, in *out (a copy of r's system): each

@@ -42,13 +42,14 @@ fi
 cores=$(nproc 2>/dev/null || echo 1)
 
 # One lz-mpi run on $1 processes with the overrides that follow: committed events/s,
-# and on 2 or more processes the measured message cost and latency (seconds).
+# the largest peak memory of a process (MB), and on 2 or more processes the measured
+# message cost and latency (seconds).
 mpi_rate() {
 	local np=$1
 	shift
 	"${MPIRUN[@]}" -np "$np" "$lzmpi" "$scene" check=no "$@" 2>/dev/null |
-		awk '/committed events\/s/ {r = $3} /^message cost/ {c = $3} /^message latency/ {l = $3}
-		     END {print r, c, l}'
+		awk '/committed events\/s/ {r = $3} /^peak memory/ {m = $3} /^message cost/ {c = $3}
+		     /^message latency/ {l = $3} END {print r, m, c, l}'
 }
 
 # The modelled P = 2 / serial of the virtual-time policy: $1 the serial engine's events
@@ -84,36 +85,37 @@ printf '{\n  "scene": "%s",\n  "cpu": "%s",\n  "cores": %s,\n  "repeats": %s,\n 
 	"$scene" "$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | sed 's/.*: *//')" "$cores" \
 	"$repeats" >"$json"
 sep=""
-printf '%-9s %14s %14s %14s %14s %12s %12s %14s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" \
-	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser"
+printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" \
+	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser" "P=2 MB"
 for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 	read -r n t w <<<"$point"
-	s=() p1=() p2=() ratio=() cost=() lat=()
+	s=() p1=() p2=() ratio=() cost=() lat=() mb=()
 	for ((k = 0; k < repeats; k++)); do
 		s+=("$(serial_rate n="$n" time="$t")") || exit 1
 		read -r r _ <<<"$(mpi_rate 1 n="$n" time="$t" window="$w" grow=1.02)"
 		p1+=("$r")
 		if [ "$cores" -ge 2 ]; then
-			read -r r c l <<<"$(mpi_rate 2 n="$n" time="$t" window="$w" grow=1.02)"
-			p2+=("$r") cost+=("$c") lat+=("$l")
+			read -r r m c l <<<"$(mpi_rate 2 n="$n" time="$t" window="$w" grow=1.02)"
+			p2+=("$r") cost+=("$c") lat+=("$l") mb+=("$m")
 			ratio+=("$(awk -v a="$r" -v b="${s[k]}" 'BEGIN {if (b > 0 && a > 0) print a / b}')")
 		fi
 	done
 	ms=$(printf '%s\n' "${s[@]}" | median)
 	m1=$(printf '%s\n' "${p1[@]}" | median)
-	m2="" mr="" mc="" ml="" mm=""
+	m2="" mr="" mc="" ml="" mm="" mp=""
 	if ((${#p2[@]})); then
 		m2=$(printf '%s\n' "${p2[@]}" | median)
 		mr=$(printf '%s\n' "${ratio[@]}" | median)
 		mc=$(printf '%s\n' "${cost[@]}" | median)
 		ml=$(printf '%s\n' "${lat[@]}" | median)
+		mp=$(printf '%s\n' "${mb[@]}" | median)
 		mm=$(model_ratio "$ms" "$m1" "$mc" "$ml" n="$n" time="$t" window="$w" grow=1.02)
 	fi
-	printf '%-9s %14s %14s %14s %14s %12s %12s %14s\n' "$n" "$ms" "$m1" "${m2:-skipped}" \
-		"${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}"
-	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s}' \
+	printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s\n' "$n" "$ms" "$m1" "${m2:-skipped}" \
+		"${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}" "${mp:--}"
+	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s, "p2_peak_mb": %s}' \
 		"$sep" "$n" "$t" "${ms:-null}" "${m1:-null}" "${m2:-null}" "${mr:-null}" "${mc:-null}" \
-		"${ml:-null}" "${mm:-null}" >>"$json"
+		"${ml:-null}" "${mm:-null}" "${mp:-null}" >>"$json"
 	sep=","
 done
 printf '\n  ]\n}\n' >>"$json"

@@ -312,6 +312,25 @@ static void same_rank(const lz_pedmd *a, const lz_pedmd *b, int k)
 	}
 }
 
+/* lz_pedmd_owned_part, 7 at a time (as lz-mpi gathers a picture), lists what
+ * lz_pedmd_owned lists, in the same order. */
+static void owned_in_parts(const lz_pedmd *r, int k)
+{
+	size_t n = lz_pedmd_owned(r, NULL), got = 0, m;
+	lz_pedmd_message *all = malloc(n * sizeof *all), part[7];
+	ck_assert_ptr_nonnull(all);
+	LZ_REQUIRE_TRUE(lz_pedmd_owned(r, all) == n && n > 7);
+	uint32_t from = 0;
+	while ((m = lz_pedmd_owned_part(r, &from, part, 7)) > 0) {
+		LZ_REQUIRE(got + m <= n && memcmp(part, all + got, m * sizeof *part) == 0,
+		           "rank %d: the part from %zu differs from lz_pedmd_owned's", k, got);
+		got += m;
+	}
+	LZ_REQUIRE(got == n && from == r->e->n, "rank %d: the parts hold %zu of %zu owned, and "
+	           "stop at particle %u of %zu", k, got, n, from, r->e->n);
+	free(all);
+}
+
 LZ_TEST(pedmd_adopt_takes_the_system_as_alloc_copies_it)
 {
 	/* lz-mpi's ranks take the start itself (one system a process): each must be the
@@ -330,6 +349,7 @@ LZ_TEST(pedmd_adopt_takes_the_system_as_alloc_copies_it)
 		LZ_REQUIRE(a && b, "rank %d: %s", k, lz_error_message());
 		LZ_REQUIRE(lz_pedmd_system(b) == t, "rank %d: lz_pedmd_adopt made a copy", k);
 		same_rank(a, b, k);
+		owned_in_parts(a, k);
 		lz_pedmd_free(a);
 		lz_edmd *back = lz_pedmd_release(b);
 		LZ_REQUIRE(back == t, "rank %d: lz_pedmd_release gave back another system", k);

@@ -6,9 +6,11 @@
  * seed that rank 0 drew for seed = auto is everyone's, so every process builds and
  * equilibrates the same system, bit for bit (lz_pedmd_scene_make). The P processes
  * are the ranks (a scene's `ranks` must agree, or be left out); each runs its domain
- * over the MPI back-end (lz/msg_mpi.h) until t_stop. Then rank 0 gathers the owned
- * particles into its copy of the system, sums the counters, prints a short report
- * (stdout) and, with check = yes, runs the serial reference and compares bit for bit.
+ * over the MPI back-end (lz/msg_mpi.h) until t_stop; the rank takes the system itself
+ * (lz_pedmd_adopt), so a process holds one. Then rank 0 gathers the owned particles
+ * into its rank's system, in rounds, sums the counters, prints a short report (stdout:
+ * with the largest peak memory of a process) and, with check = yes, runs the serial
+ * reference and compares bit for bit.
  * Before the run, ranks 0 and 1 measure what a message costs and how long it travels
  * (probe): the report prints both, for the virtual-time model of `make bench`.
  * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here.
@@ -31,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include <mpi.h>
 
@@ -176,20 +179,18 @@ static lz_pedmd_counts counts_of_all(const lz_pedmd *r, int rank, int size)
 	return sum;
 }
 
-/* The owned particles of every rank (lz_pedmd_owned), on rank 0 (everywhere: MPI
- * collects to all): a malloc'd array in *all, their number in *n (0 and NULL on the
- * other ranks unless everywhere). LZ_OK; LZ_EDOM when the ranks own more than N. O(N)
- * where collected, O(owned) elsewhere. Collective over MPI_COMM_WORLD. */
-static int collect(const lz_pedmd *r, int rank, int size, int everywhere,
-                   lz_pedmd_message **all, size_t *n)
+/* The owned particles of every rank (lz_pedmd_owned), on every rank: a malloc'd
+ * array in *all, their number in *n. LZ_OK; LZ_EDOM when the ranks own more than N.
+ * O(N). Collective over MPI_COMM_WORLD. */
+static int collect(const lz_pedmd *r, int rank, int size, lz_pedmd_message **all, size_t *n)
 {
 	size_t N = lz_pedmd_system(r)->n;
-	int here = everywhere || rank == 0, mine = (int)lz_pedmd_owned(r, NULL);
+	int mine = (int)lz_pedmd_owned(r, NULL);
 	lz_pedmd_message *own = malloc((size_t)(mine ? mine : 1) * sizeof *own);
 	int *count = malloc(2 * (size_t)size * sizeof *count);
-	*all = here ? malloc(N * sizeof **all) : NULL;
+	*all = malloc(N * sizeof **all);
 	*n = 0;
-	if (!own || !count || (here && !*all)) {
+	if (!own || !count || !*all) {
 		lz_error(LZ_ENOMEM, "no memory to collect %zu particles", N);
 		abort_run(rank, LZ_ENOMEM);
 	}
@@ -207,13 +208,8 @@ static int collect(const lz_pedmd *r, int rank, int size, int everywhere,
 	MPI_Datatype type;
 	MPI_Type_contiguous((int)sizeof *own, MPI_BYTE, &type);
 	MPI_Type_commit(&type);
-	if (everywhere)
-		MPI_Allgatherv(own, mine, type, *all, count, at, type, MPI_COMM_WORLD);
-	else
-		MPI_Gatherv(own, mine, type, *all, count, at, type, 0, MPI_COMM_WORLD);
+	MPI_Allgatherv(own, mine, type, *all, count, at, type, MPI_COMM_WORLD);
 	MPI_Type_free(&type);
-	if (!here)
-		*n = 0;
 	free(own);
 	free(count);
 	return LZ_OK;
@@ -229,29 +225,60 @@ typedef struct {
 	double pilot_ratio;  /* balance = pilot: the busiest rank's share, pilot cuts / even */
 } lz_mpi_run;
 
+/* Particles a round of gather() brings to rank 0, from all ranks together: the
+ * picture arrives in pieces of 6.8 MB, never all at once. */
+#define GATHER_ROUND 65536
+
 /* The owned particles of every rank written on rank 0 into the system of its rank,
  * which then ends (lz_pedmd_release; its cells are not updated): the serial picture,
- * as lz_pedmd_sim_gather, in x->p.system on every rank. LZ_OK, or an error on rank 0
- * when a particle came never or twice. Collective. */
+ * as lz_pedmd_sim_gather, in x->p.system on every rank. Rank 0's own particles are
+ * there already; the others' come in rounds of GATHER_ROUND / size from each rank.
+ * LZ_OK, or an error on rank 0 when a particle came never or twice. Collective. */
 static int gather(lz_mpi_run *x, int rank, int size)
 {
-	lz_pedmd_message *all;
-	size_t n;
-	collect(x->r, rank, size, 0, &all, &n);
-	lz_edmd *out = x->p.system = lz_pedmd_release(x->r);
-	x->r = NULL;
-	uint8_t *seen = rank == 0 ? calloc(out->n, 1) : NULL;
-	int st = rank == 0 && !seen ? lz_error(LZ_ENOMEM, "no memory for %zu marks", out->n) : LZ_OK;
-	for (size_t q = 0; rank == 0 && q < n && st == LZ_OK; q++) {
-		uint32_t i = all[q].id;
-		if (i >= out->n || seen[i]++)
-			st = lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
-		else
-			out->p[i] = all[q].p;
+	size_t N = lz_pedmd_system(x->r)->n, chunk = GATHER_ROUND / (size_t)size, got = 0;
+	uint8_t *seen = rank == 0 ? calloc(N, 1) : NULL;
+	lz_pedmd_message *part = malloc((rank == 0 ? (size_t)size : 1) * chunk * sizeof *part);
+	int *count = malloc(2 * (size_t)size * sizeof *count);
+	if ((rank == 0 && !seen) || !part || !count) {
+		lz_error(LZ_ENOMEM, "no memory to gather %zu particles", N);
+		abort_run(rank, LZ_ENOMEM);
 	}
-	if (rank == 0 && st == LZ_OK && n != out->n)
-		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", n, out->n);
-	free(all);
+	for (uint32_t i = 0; rank == 0 && i < N; i++)
+		got += seen[i] = lz_pedmd_role(x->r, i) == LZ_PEDMD_OWNED;
+	int mine = rank == 0 ? 0 : (int)lz_pedmd_owned(x->r, NULL), rounds;
+	int need = (int)(((size_t)mine + chunk - 1) / chunk);
+	MPI_Allreduce(&need, &rounds, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+	MPI_Datatype type;
+	MPI_Type_contiguous((int)sizeof *part, MPI_BYTE, &type);
+	MPI_Type_commit(&type);
+	int st = LZ_OK, *at = count + size;
+	uint32_t from = 0;
+	lz_edmd *out = rank == 0 ? lz_pedmd_release(x->r) : NULL;  /* its own are in place */
+	for (int k = 0; k < rounds; k++) {
+		int n = rank == 0 ? 0 : (int)lz_pedmd_owned_part(x->r, &from, part, chunk);
+		MPI_Gather(&n, 1, MPI_INT, count, 1, MPI_INT, 0, MPI_COMM_WORLD);
+		for (int q = 0, sum = 0; rank == 0 && q < size; sum += count[q++])
+			at[q] = sum;
+		MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : part, n, type, part, count, at, type, 0,
+		            MPI_COMM_WORLD);
+		for (int q = 0; rank == 0 && q < size; q++)
+			for (int m = 0; m < count[q] && st == LZ_OK; m++) {
+				uint32_t i = part[at[q] + m].id;
+				if (i >= N || seen[i]++)
+					st = lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
+				else
+					out->p[i] = part[at[q] + m].p;
+				got++;
+			}
+	}
+	MPI_Type_free(&type);
+	if (rank == 0 && st == LZ_OK && got != N)
+		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", got, N);
+	x->p.system = rank == 0 ? out : lz_pedmd_release(x->r);
+	x->r = NULL;
+	free(part);
+	free(count);
 	free(seen);
 	return st;
 }
@@ -276,7 +303,7 @@ static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
 		return LZ_OK;
 	lz_pedmd_message *all;
 	size_t n;
-	collect(r, rank, size, 1, &all, &n);
+	collect(r, rank, size, &all, &n);
 	memcpy(d->cut, cut, (size_t)(size + 1) * sizeof *cut);
 	st = lz_pedmd_take(r, all, n);
 	free(all);
@@ -336,8 +363,19 @@ static probe_result probe(lz_msg *msg, int rank, int size)
 	return res;
 }
 
+/* The largest peak resident memory of the processes, in MB (getrusage: kB on Linux),
+ * on rank 0. Collective. */
+static double peak_mb(void)
+{
+	struct rusage u;
+	double mine = getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024 : 0, most = mine;
+	MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+	return most;
+}
+
 static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
-                   const lz_pedmd_counts *c, double wall, probe_result cost, double pilot)
+                   const lz_pedmd_counts *c, double wall, probe_result cost, double pilot,
+                   double peak)
 {
 	const lz_edmd *e = p->system;
 	printf("lz-mpi: scene %s, %zu %s, %d ranks along the %s curve\n", lz_scene_name(s), e->n,
@@ -359,6 +397,8 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 		printf("pilot busiest share   %.4f (pilot cuts over even cuts)\n", pilot);
 	printf("parallel wall time    %.4f s\n", wall);
 	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
+	printf("peak memory           %.1f MB a process (the largest; %.0f bytes a particle)\n",
+	       peak, peak * 1048576 / (double)e->n);
 	if (size > 1)
 		printf("message cost          %.3g s (send or receive; %d ping-pongs of ranks 0, 1)\n"
 		       "message latency       %.3g s\n", cost.cost, PROBE_PINGS, cost.latency);
@@ -439,8 +479,9 @@ int main(int argc, char **argv)
 	/* The results, on rank 0. */
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
 	st = gather(&x, rank, size);
+	double peak = peak_mb();  /* check = yes: the serial reference is in it too */
 	if (rank == 0 && st == LZ_OK)
-		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio);
+		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio, peak);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {
 		size_t k = lz_pedmd_scene_differ(x.p.system, x.p.reference);
 		if (k == 0)

@@ -446,6 +446,10 @@ int lz_pedmd_load_since(lz_pedmd *r, double *delta);
  * MIGRATE), into out[] (room for N; NULL: only count them): its part of the serial
  * picture. Their number. O(N). */
 size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out);
+/* ... in parts: at most `most` of them, from particle *from on, which then moves past
+ * the last one looked at (N: all done). O(particles looked at). */
+size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *out,
+                           size_t most);
 
 /* At a cut (phase BEGIN, nothing waiting): rank r takes its share, under the cuts now
  * in r->d, of the serial picture that all[0 .. n-1] make — every particle once, from
