@@ -229,6 +229,21 @@ typedef struct {
  * picture arrives in pieces of 6.8 MB, never all at once. */
 #define GATHER_ROUND 65536
 
+/* A round's m particles written into out on rank 0, each once (seen[]): LZ_OK, or
+ * LZ_EDOM naming one owned twice or unknown. *got counts them. */
+static int file_round(lz_edmd *out, uint8_t *seen, const lz_pedmd_message *part, size_t m,
+                      size_t *got)
+{
+	for (size_t k = 0; k < m; k++) {
+		uint32_t i = part[k].id;
+		if (i >= out->n || seen[i]++)
+			return lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
+		out->p[i] = part[k].p;
+		++*got;
+	}
+	return LZ_OK;
+}
+
 /* The owned particles of every rank written on rank 0 into the system of its rank,
  * which then ends (lz_pedmd_release; its cells are not updated): the serial picture,
  * as lz_pedmd_sim_gather, in x->p.system on every rank. Rank 0's own particles are
@@ -262,15 +277,8 @@ static int gather(lz_mpi_run *x, int rank, int size)
 			at[q] = sum;
 		MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : part, n, type, part, count, at, type, 0,
 		            MPI_COMM_WORLD);
-		for (int q = 0; rank == 0 && q < size; q++)
-			for (int m = 0; m < count[q] && st == LZ_OK; m++) {
-				uint32_t i = part[at[q] + m].id;
-				if (i >= N || seen[i]++)
-					st = lz_error(LZ_EDOM, "particle %u is owned twice (or does not exist)", i);
-				else
-					out->p[i] = part[at[q] + m].p;
-				got++;
-			}
+		if (rank == 0 && st == LZ_OK)
+			st = file_round(out, seen, part, (size_t)(at[size - 1] + count[size - 1]), &got);
 	}
 	MPI_Type_free(&type);
 	if (rank == 0 && st == LZ_OK && got != N)
