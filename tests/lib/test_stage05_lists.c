@@ -291,8 +291,9 @@ END_TEST
 
 LZ_TEST(edmd_lists_both_builds_of_the_prediction_give_the_same_bits)
 {
-	/* the prediction for any processor and the one for AVX2 (four pairs a vector) do the same operations in the same order: the same trajectory, in a
-	 * periodic fluid, under gravity between walls, and with lists past 64 pairs */
+	/* the prediction for any processor and the one for AVX2 (four pairs a vector) do
+	 * the same operations in the same order: the same trajectory, in a periodic
+	 * fluid, under gravity between walls, and with lists past 64 pairs */
 	struct {
 		int dim, walls;
 		double eta, g, shell;

@@ -508,8 +508,8 @@ int lz_edmd_list_start(lz_edmd *e);
 
 /* Predict particle i at now from its list, its skin and, when near one, the walls:
  * ev[i] and its key in the queue. Four pairs to a vector; built for any processor
- * and, on x86-64 with gcc or clang, for AVX2, the same bits either way.
- * LZ_OK, or LZ_ENOMEM (a calendar day that cannot grow). O(neighbours + log n). */
+ * and, on x86-64 with gcc or clang, for AVX2: the same bits either way. LZ_OK, or
+ * LZ_ENOMEM (a calendar day that cannot grow). O(neighbours + log n). */
 int lz_edmd_list_predict(lz_edmd *e, uint32_t i);
 
 /* Which build of lz_edmd_list_predict e's lists use: wide = 1 the AVX2 one when the
