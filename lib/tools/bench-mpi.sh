@@ -42,7 +42,7 @@ fi
 cores=$(nproc 2>/dev/null || echo 1)
 
 # One lz-mpi run on $1 processes with the overrides that follow: committed events/s,
-# the largest peak memory of a process (MB), and on 2 or more processes the measured
+# the largest peak memory of a process (MiB), and on 2 or more processes the measured
 # message cost and latency (seconds).
 mpi_rate() {
 	local np=$1
@@ -86,7 +86,7 @@ printf '{\n  "scene": "%s",\n  "cpu": "%s",\n  "cores": %s,\n  "repeats": %s,\n 
 	"$repeats" >"$json"
 sep=""
 printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" \
-	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser" "P=2 MB"
+	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser" "P=2 MiB"
 for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 	read -r n t w <<<"$point"
 	s=() p1=() p2=() ratio=() cost=() lat=() mb=()
@@ -113,7 +113,7 @@ for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 	fi
 	printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s\n' "$n" "$ms" "$m1" "${m2:-skipped}" \
 		"${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}" "${mp:--}"
-	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s, "p2_peak_mb": %s}' \
+	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s, "p2_peak_mib": %s}' \
 		"$sep" "$n" "$t" "${ms:-null}" "${m1:-null}" "${m2:-null}" "${mr:-null}" "${mc:-null}" \
 		"${ml:-null}" "${mm:-null}" "${mp:-null}" >>"$json"
 	sep=","

@@ -371,9 +371,9 @@ static probe_result probe(lz_msg *msg, int rank, int size)
 	return res;
 }
 
-/* The largest peak resident memory of the processes, in MB (getrusage: kB on Linux),
+/* The largest peak resident memory of the processes, in MiB (getrusage: kB on Linux),
  * on rank 0. Collective. */
-static double peak_mb(void)
+static double peak_mib(void)
 {
 	struct rusage u;
 	double mine = getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024 : 0, most = mine;
@@ -405,7 +405,7 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 		printf("pilot busiest share   %.4f (pilot cuts over even cuts)\n", pilot);
 	printf("parallel wall time    %.4f s\n", wall);
 	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
-	printf("peak memory           %.1f MB a process (the largest; %.0f bytes a particle)\n",
+	printf("peak memory           %.1f MiB a process (the largest; %.0f bytes a particle)\n",
 	       peak, peak * 1048576 / (double)e->n);
 	if (size > 1)
 		printf("message cost          %.3g s (send or receive; %d ping-pongs of ranks 0, 1)\n"
@@ -487,7 +487,7 @@ int main(int argc, char **argv)
 	/* The results, on rank 0. */
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
 	st = gather(&x, rank, size);
-	double peak = peak_mb();  /* check = yes: the serial reference is in it too */
+	double peak = peak_mib();  /* check = yes: the serial reference is in it too */
 	if (rank == 0 && st == LZ_OK)
 		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio, peak);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {
