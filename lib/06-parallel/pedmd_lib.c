@@ -193,38 +193,55 @@ static void mark_near(lz_pedmd *r)
 	}
 }
 
-/* The rank's share of system s under its domains r->d: classes, roles, own and ghost
- * events from s's heap keys and events, cells in s's list order, the heap, the read
- * stamps cleared, the clock at s's. r->e already holds s's records (copy_system), or
- * is s itself (lz_pedmd_adopt, lz_pedmd_take): s's keys are read before its heap is
- * emptied, its lists before they are rebuilt. */
-static int take_system(lz_pedmd *r, const lz_edmd *s)
+/* Every cell's class for r under the cuts in r->d, the near bits, no read stamps. */
+static void classify_cells(lz_pedmd *r)
 {
-	size_t n = s->n, nc = s->ncells;
 	lz_pedmd_classify(r->e, r->d, r->rank, r->cls);
 	mark_near(r);
-	for (size_t c = 0; c < nc; c++)
+	for (size_t c = 0; c < r->e->ncells; c++)
 		r->read[c] = -INFINITY;
+}
+
+/* Particle i with its event ev at t, in a cell of class k: OWNED, GHOST or ABSENT,
+ * as if never handed over and never heard of. */
+static void take_particle(lz_pedmd *r, uint32_t i, uint8_t k, double t, lz_edmd_event ev)
+{
+	lz_pedmd_event x = {t, ev};
+	r->role[i] = k == LZ_PEDMD_HALO ? LZ_PEDMD_GHOST
+	             : k == LZ_PEDMD_FAR ? LZ_PEDMD_ABSENT : LZ_PEDMD_OWNED;
+	r->own[i] = r->role[i] == LZ_PEDMD_OWNED ? x : (lz_pedmd_event){-INFINITY, {LZ_EDMD_NONE, 0}};
+	r->ghost[i] = r->role[i] == LZ_PEDMD_ABSENT ? (lz_pedmd_event){INFINITY, {LZ_EDMD_NONE, 0}} : x;
+	r->heard[i] = -INFINITY;
+}
+
+/* The owned particles into the emptied heap by their own events, the clock at the
+ * system's, and the keys of the border's particles from the ghosts aimed at them. */
+static void fill_heap(lz_pedmd *r)
+{
 	lz_edmd *e = r->e;
-	for (uint32_t i = 0; i < n; i++) {
-		uint8_t k = r->cls[e->p[i].cell];
-		lz_pedmd_event ev = {lz_heap_key(s->heap, i), s->ev[i]};
-		r->role[i] = k == LZ_PEDMD_HALO ? LZ_PEDMD_GHOST
-		             : k == LZ_PEDMD_FAR ? LZ_PEDMD_ABSENT : LZ_PEDMD_OWNED;
-		r->own[i] = r->role[i] == LZ_PEDMD_OWNED ? ev : (lz_pedmd_event){-INFINITY, {LZ_EDMD_NONE, 0}};
-		r->ghost[i] = ev;
-		r->heard[i] = -INFINITY;
-	}
-	if (fill_cells(r, s) != LZ_OK)
-		return LZ_ENOMEM;
 	lz_heap_clear(e->heap);
-	for (uint32_t i = 0; i < n; i++)
+	for (uint32_t i = 0; i < e->n; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED)
 			lz_heap_push(e->heap, i, r->own[i].t);
 	r->clock = e->now;
-	for (uint32_t i = 0; i < n; i++)
+	for (uint32_t i = 0; i < e->n; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED && r->cls[e->p[i].cell] == LZ_PEDMD_BORDER)
 			lz_pedmd_retarget(r, i);
+}
+
+/* The rank's share of system s under its domains r->d: classes, roles, own and ghost
+ * events from s's heap keys and events, cells in s's list order, the heap, the read
+ * stamps cleared, the clock at s's. r->e already holds s's records (copy_system), or
+ * is s itself (lz_pedmd_adopt): s's keys are read before its heap is emptied, its
+ * lists before they are rebuilt. */
+static int take_system(lz_pedmd *r, const lz_edmd *s)
+{
+	classify_cells(r);
+	for (uint32_t i = 0; i < s->n; i++)
+		take_particle(r, i, r->cls[s->p[i].cell], lz_heap_key(s->heap, i), s->ev[i]);
+	if (fill_cells(r, s) != LZ_OK)
+		return LZ_ENOMEM;
+	fill_heap(r);
 	return LZ_OK;
 }
 
@@ -369,65 +386,61 @@ size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
 	return lz_pedmd_owned_part(r, &from, out, SIZE_MAX);
 }
 
-/* The serial picture that all[0 .. n-1] make, in *out (a copy of r's system): each
- * particle as its owner has it (record, event, key), cells in the order of the
- * numbers, the heap. LZ_OK; LZ_EINVAL when a particle is missing or comes twice;
- * LZ_ENOMEM. O(N). */
-static int picture(const lz_pedmd *r, const lz_pedmd_message *all, size_t n, lz_edmd **out)
+/* LZ_OK when part[0 .. n-1] names particles of the system, each once (a bit of role[]
+ * marks them for the while); else LZ_EINVAL, and r as it was. O(n). */
+static int check_part(lz_pedmd *r, const lz_pedmd_message *part, size_t n)
 {
-	size_t N = r->e->n;
-	*out = NULL;
-	if (n != N)
-		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
-		                r->rank, n, N);
-	lz_edmd *s = copy_system(r->e);
-	double *key = malloc(N * sizeof *key);
-	uint8_t *seen = calloc(N, 1);
-	int st = s && key && seen ? LZ_OK
-	                          : lz_error(LZ_ENOMEM, "no memory for a picture of %zu particles", N);
-	for (size_t k = 0; k < n && st == LZ_OK; k++) {
-		uint32_t i = all[k].id;
-		if (i >= N || seen[i]++)
+	enum { TAKEN = 0x80 };
+	const lz_edmd *e = r->e;
+	size_t k = 0;
+	int st = LZ_OK;
+	for (; k < n && st == LZ_OK; k++) {
+		uint32_t i = part[k].id;
+		if (i >= e->n || part[k].p.cell >= e->ncells || (r->role[i] & TAKEN))
 			st = lz_error(LZ_EINVAL, "rank %d: particle %u is twice in the picture, or not in "
-			              "the system", r->rank, i);
-		else {
-			s->p[i] = all[k].p;
-			s->ev[i] = all[k].event.ev;
-			key[i] = all[k].event.t;
-		}
+			              "the system (or its cell %u)", r->rank, i, part[k].p.cell);
+		else
+			r->role[i] |= TAKEN;
 	}
-	if (st == LZ_OK) {
-		lz_edmd_cell_clear(s);
-		lz_heap_clear(s->heap);
-		for (uint32_t i = (uint32_t)N; i-- > 0;)
-			lz_edmd_cell_insert(s, i, s->p[i].cell);
-		for (uint32_t i = 0; i < N; i++)
-			lz_heap_push(s->heap, i, key[i]);
-	}
-	free(key);
-	free(seen);
-	if (st == LZ_OK)
-		*out = s;
-	else
-		lz_edmd_free(s);
+	while (k-- > 0)
+		if (part[k].id < e->n)
+			r->role[part[k].id] &= (uint8_t)~TAKEN;
 	return st;
 }
 
-int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
+int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *part, size_t n)
 {
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
 		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
 		                "message waiting", r->rank);
-	lz_edmd *s;
-	int st = picture(r, all, n, &s);
+	int st = check_part(r, part, n);
 	if (st != LZ_OK)
 		return st;
-	lz_edmd_free(r->e);
-	r->e = s;  /* the picture becomes the rank's own system */
-	if ((st = take_system(r, s)) != LZ_OK)
-		return st;
+	lz_edmd *e = r->e;
+	classify_cells(r);
+	for (uint32_t i = 0; i < e->n; i++)  /* absent until the picture names it */
+		take_particle(r, i, LZ_PEDMD_FAR, INFINITY, (lz_edmd_event){LZ_EDMD_NONE, 0});
+	for (size_t k = 0; k < n; k++) {
+		uint32_t i = part[k].id;
+		e->p[i] = part[k].p;
+		e->ev[i] = part[k].event.ev;
+		take_particle(r, i, r->cls[e->p[i].cell], part[k].event.t, part[k].event.ev);
+	}
+	lz_edmd_cell_clear(e);
+	for (uint32_t i = (uint32_t)e->n; i-- > 0;)  /* at the heads: each list by number */
+		if (r->role[i] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, i, e->p[i].cell);
+	fill_heap(r);
 	r->counts.balances++;
 	return LZ_OK;
+}
+
+int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
+{
+	if (n != r->e->n)
+		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
+		                r->rank, n, r->e->n);
+	return lz_pedmd_take_part(r, all, n);  /* n, none twice: every particle once */
 }
 
 int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut)
