@@ -445,8 +445,8 @@ static int rebuild(lz_edmd *e, uint32_t i)
 	return st;
 }
 
-/* The calendar's days sized from the first events: 32 of them a day, at the rate
- * that the particles' mean time to their first event gives. */
+/* The calendar's days sized from the first events: per_day of them a day, at the
+ * rate that the particles' mean time to their first event gives. */
 static int first_days(lz_edmd *e)
 {
 	double sum = 0;
@@ -456,7 +456,7 @@ static int first_days(lz_edmd *e)
 			sum += e->cal->item[i].key - e->now;
 			k++;
 		}
-	double width = k > 0 && sum > 0 ? 32 * (sum / k) / (double)k : e->cal->width;
+	double width = k > 0 && sum > 0 ? e->cal->per_day * (sum / k) / (double)k : e->cal->width;
 	return lz_calendar_layout(e->cal, width);
 }
 

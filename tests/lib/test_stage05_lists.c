@@ -121,11 +121,10 @@ LZ_TEST(queues_give_the_earliest_event_like_brute_force)
 }
 END_TEST
 
-LZ_TEST(calendar_shift_layout_and_renumber_keep_the_order)
+/* n keys shifted (a re-based clock), laid out with other days, items renamed: the
+ * same keys come out in the same order. */
+static void shifted_keep_order(size_t n)
 {
-	/* keys shifted (a re-based clock), laid out with other days, items renamed: the
-	 * same keys come out in the same order */
-	size_t n = 2000;
 	lz_calendar *q = lz_calendar_alloc(n, 1e-3);
 	gsl_rng *r = lz_test_rng(77);
 	double *key = malloc(n * sizeof *key);
@@ -157,6 +156,12 @@ LZ_TEST(calendar_shift_layout_and_renumber_keep_the_order)
 	free(to);
 	gsl_rng_free(r);
 	lz_calendar_free(q);
+}
+
+LZ_TEST(calendar_shift_layout_and_renumber_keep_the_order)
+{
+	shifted_keep_order(2000);
+	shifted_keep_order(300000);  /* past 2^18 items: the most days, longer ones */
 }
 END_TEST
 
