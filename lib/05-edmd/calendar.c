@@ -216,12 +216,13 @@ static int new_day(lz_calendar *q)
 
 /* ---- the calendar ---- */
 
-/* The most days in the ring: 2^16 heads, 256 kB, stay in the second-level cache, where
+/* The most days in the ring: 2^15 heads, 128 kB, stay in the second-level cache, where
  * a change finds its day's head; a million spheres at 32 events a day would want a
- * megabyte of heads and wait on it at every change. Longer days instead: 1.04-1.07
- * times as fast at N = 10^6 in interleaved runs; at 10^4, whose heads are in cache
- * anyway, they cost 3 %, so only the largest calendars have them. */
-#define DAYS_MAX 65536u
+ * megabyte of heads and wait on it at every change. Longer days instead (interleaved
+ * runs at N = 10^6): 2^16 days 1.04-1.07 times as fast, 2^15 about 3 % more; at 10^4,
+ * whose heads are in cache anyway, longer days cost 3 %, so only large calendars have
+ * them. */
+#define DAYS_MAX 32768u
 
 /* Days in the ring for cap items: the power of two from cap/4 up (a byte or two per
  * item), so that the ring spans about 8 events of every item — the rare later ones

@@ -14,12 +14,11 @@
  * difference, a product and a floor, each monotone), so that an earlier key never
  * lands on a later day: the order is exact, ties apart.
  *
- * Sized right, a day holds a few dozen events (a hundred and more past 2.6·10^5 items,
- * where the ring stops at 2^16 days, whose heads stay in cache) and nearly every
- * change lands in the ring: lz_calendar_alloc takes the width from the expected rate
- * of events, and lz_calendar_shift (a re-based clock) lays the calendar out again with
- * the width the events since the last shift call for. Items are the integers 0 ..
- * cap-1.
+ * Sized right, a day holds a few dozen events (hundreds past 1.3·10^5 items, where the
+ * ring stops at 2^15 days, whose heads stay in cache) and nearly every change lands in
+ * the ring: lz_calendar_alloc takes the width from the expected rate of events, and
+ * lz_calendar_shift (a re-based clock) lays the calendar out again with the width the
+ * events since the last shift call for. Items are the integers 0 .. cap-1.
  *
  * Invariants: every item with a key is in exactly one of near (its day d <= today),
  * the ring (today < d < resorted + days, at slot d mod days) or the overflow (later,
@@ -60,7 +59,7 @@ typedef struct {
 	                         the next day that is a multiple of days, before them */
 	uint32_t days;        /* the ring's days (a power of two), today's slot included */
 	double per_day;       /* the events a day that widths aim at: 32, more when the
-	                         ring is at its most days (a million items and up) */
+	                         ring is at its most days (past 1.3·10^5 items) */
 	lz_cal_item *item;    /* item[id]: its key and links, in one place */
 	uint32_t *head;       /* head[days]: each day's list; head[days]: the overflow */
 	size_t ring;          /* items in the ring (not today, not overflow) */
