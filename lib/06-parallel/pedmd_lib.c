@@ -386,45 +386,47 @@ size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
 	return lz_pedmd_owned_part(r, &from, out, SIZE_MAX);
 }
 
-/* LZ_OK when part[0 .. n-1] names particles of the system, each once (a bit of role[]
+/* LZ_OK when all[0 .. n-1] names particles of the system, each once (a bit of role[]
  * marks them for the while); else LZ_EINVAL, and r as it was. O(n). */
-static int check_part(lz_pedmd *r, const lz_pedmd_message *part, size_t n)
+static int check_picture(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 {
 	enum { TAKEN = 0x80 };
 	const lz_edmd *e = r->e;
 	size_t k = 0;
 	int st = LZ_OK;
 	for (; k < n && st == LZ_OK; k++) {
-		uint32_t i = part[k].id;
-		if (i >= e->n || part[k].p.cell >= e->ncells || (r->role[i] & TAKEN))
+		uint32_t i = all[k].id;
+		if (i >= e->n || all[k].p.cell >= e->ncells || (r->role[i] & TAKEN))
 			st = lz_error(LZ_EINVAL, "rank %d: particle %u is twice in the picture, or not in "
-			              "the system (or its cell %u)", r->rank, i, part[k].p.cell);
+			              "the system (or its cell %u)", r->rank, i, all[k].p.cell);
 		else
 			r->role[i] |= TAKEN;
 	}
 	while (k-- > 0)
-		if (part[k].id < e->n)
-			r->role[part[k].id] &= (uint8_t)~TAKEN;
+		if (all[k].id < e->n)
+			r->role[all[k].id] &= (uint8_t)~TAKEN;
 	return st;
 }
 
-int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *part, size_t n)
+int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 {
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
 		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
 		                "message waiting", r->rank);
-	int st = check_part(r, part, n);
+	if (n != r->e->n)
+		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
+		                r->rank, n, r->e->n);
+	int st = check_picture(r, all, n);  /* n of them, none twice: every particle once */
 	if (st != LZ_OK)
 		return st;
 	lz_edmd *e = r->e;
 	classify_cells(r);
-	for (uint32_t i = 0; i < e->n; i++)  /* absent until the picture names it */
-		take_particle(r, i, LZ_PEDMD_FAR, INFINITY, (lz_edmd_event){LZ_EDMD_NONE, 0});
-	for (size_t k = 0; k < n; k++) {
-		uint32_t i = part[k].id;
-		e->p[i] = part[k].p;
-		e->ev[i] = part[k].event.ev;
-		take_particle(r, i, r->cls[e->p[i].cell], part[k].event.t, part[k].event.ev);
+	for (size_t k = 0; k < n; k++) {  /* every record, the absent ones' too: their counts
+	                                      tell whether an event aimed at them is stale */
+		uint32_t i = all[k].id;
+		e->p[i] = all[k].p;
+		e->ev[i] = all[k].event.ev;
+		take_particle(r, i, r->cls[e->p[i].cell], all[k].event.t, all[k].event.ev);
 	}
 	lz_edmd_cell_clear(e);
 	for (uint32_t i = (uint32_t)e->n; i-- > 0;)  /* at the heads: each list by number */
@@ -433,14 +435,6 @@ int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *part, size_t n)
 	fill_heap(r);
 	r->counts.balances++;
 	return LZ_OK;
-}
-
-int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
-{
-	if (n != r->e->n)
-		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
-		                r->rank, n, r->e->n);
-	return lz_pedmd_take_part(r, all, n);  /* n, none twice: every particle once */
 }
 
 int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut)

@@ -18,9 +18,8 @@
  * stub: its committed events per cell do not depend on the schedule) and takes the
  * same cuts. balance = dynamic: at every cut that lz_pedmd_balance_due names, the
  * ranks sum their load since the last look (MPI_Allreduce), all find the same new
- * cuts, and when these pay every owned particle goes to the ranks that need it (its
- * cell's new owner, and those that hold the cell as HALO: an MPI_Alltoallv, O(N/P +
- * halo) a process), and each rank takes what it got (lz_pedmd_take_part).
+ * cuts, and when these pay every rank all-gathers the owned particles (the serial
+ * picture, O(N) a process) and takes its share (lz_pedmd_take).
  *
  * Exit status, the same on every process: 0 success; 1 the run failed or differs from
  * the serial run; 2 bad input (usage, scene file, key, value, ranks). A failure while
@@ -180,6 +179,42 @@ static lz_pedmd_counts counts_of_all(const lz_pedmd *r, int rank, int size)
 	return sum;
 }
 
+/* The owned particles of every rank (lz_pedmd_owned), on every rank: a malloc'd
+ * array in *all, their number in *n. LZ_OK; LZ_EDOM when the ranks own more than N.
+ * O(N). Collective over MPI_COMM_WORLD. */
+static int collect(const lz_pedmd *r, int rank, int size, lz_pedmd_message **all, size_t *n)
+{
+	size_t N = lz_pedmd_system(r)->n;
+	int mine = (int)lz_pedmd_owned(r, NULL);
+	lz_pedmd_message *own = malloc((size_t)(mine ? mine : 1) * sizeof *own);
+	int *count = malloc(2 * (size_t)size * sizeof *count);
+	*all = malloc(N * sizeof **all);
+	*n = 0;
+	if (!own || !count || !*all) {
+		lz_error(LZ_ENOMEM, "no memory to collect %zu particles", N);
+		abort_run(rank, LZ_ENOMEM);
+	}
+	lz_pedmd_owned(r, own);
+	MPI_Allgather(&mine, 1, MPI_INT, count, 1, MPI_INT, MPI_COMM_WORLD);
+	int *at = count + size, st = LZ_OK;
+	for (int q = 0; q < size; q++) {  /* <= N < 2^31: every displacement is an int */
+		at[q] = (int)*n;
+		*n += (size_t)count[q];
+		if (*n > N)
+			st = lz_error(LZ_EDOM, "the ranks own more than the %zu particles", N);
+	}
+	if (st != LZ_OK)
+		abort_run(rank, st);
+	MPI_Datatype type;
+	MPI_Type_contiguous((int)sizeof *own, MPI_BYTE, &type);
+	MPI_Type_commit(&type);
+	MPI_Allgatherv(own, mine, type, *all, count, at, type, MPI_COMM_WORLD);
+	MPI_Type_free(&type);
+	free(own);
+	free(count);
+	return LZ_OK;
+}
+
 /* What a process holds. */
 typedef struct {
 	lz_scene *s;
@@ -256,73 +291,10 @@ static int gather(lz_mpi_run *x, int rank, int size)
 	return st;
 }
 
-/* The ranks that need particle i after the cuts moved to those in d: its cell c's
- * owner, then the ranks that hold c as HALO. Their number (at most 28). */
-static int destinations(const lz_edmd *e, const lz_pedmd_domains *d, uint32_t c, int *to)
-{
-	to[0] = lz_pedmd_owner(d, c);
-	return 1 + lz_pedmd_listeners(e, d, to[0], c, to + 1);
-}
-
-/* Owned particles a pass of ship() reads at a time. */
-#define SHIP_ROUND 4096
-
-/* Every owned particle of r sent to the ranks that need it under the cuts now in d,
- * and what the others send here received into a malloc'd *got (*n of them): one
- * all-to-all, O(N/P + halo) a process rather than the whole picture. The owned
- * particles are read twice, SHIP_ROUND at a time: to count what goes where, then to
- * file it. Collective. */
-static void ship(const lz_pedmd *r, const lz_pedmd_domains *d, int rank, int size,
-                 lz_pedmd_message **got, size_t *n)
-{
-	const lz_edmd *e = lz_pedmd_system(r);
-	lz_pedmd_message *own = malloc(SHIP_ROUND * sizeof *own), *out = NULL;
-	int *count = calloc(4 * (size_t)size, sizeof *count), to[28];
-	if (!own || !count)
-		abort_run(rank, lz_error(LZ_ENOMEM, "no memory to ship particles"));
-	int *at = count + size, *rcount = at + size, *rat = rcount + size;
-	size_t total = 0;
-	for (int pass = 0; pass < 2; pass++) {
-		uint32_t from = 0;
-		for (size_t m; (m = lz_pedmd_owned_part(r, &from, own, SHIP_ROUND)) > 0;)
-			for (size_t k = 0; k < m; k++)
-				for (int q = destinations(e, d, own[k].p.cell, to); q-- > 0;)
-					if (pass == 0)
-						count[to[q]]++;
-					else
-						out[at[to[q]]++] = own[k];  /* at[] runs to each end, then back */
-		for (int q = 0; q < size && pass == 0; q++) {
-			at[q] = (int)total;
-			total += (size_t)count[q];
-		}
-		if (pass == 0 && (total > INT32_MAX || !(out = malloc((total ? total : 1) * sizeof *out))))
-			abort_run(rank, lz_error(LZ_ENOMEM, "no memory to ship %zu copies", total));
-	}
-	for (int q = 0; q < size; q++)
-		at[q] -= count[q];
-	free(own);
-	MPI_Alltoall(count, 1, MPI_INT, rcount, 1, MPI_INT, MPI_COMM_WORLD);
-	*n = 0;
-	for (int q = 0; q < size; q++) {
-		rat[q] = (int)*n;
-		*n += (size_t)rcount[q];
-	}
-	if (*n > INT32_MAX || !(*got = malloc((*n ? *n : 1) * sizeof **got)))
-		abort_run(rank, lz_error(LZ_ENOMEM, "no memory for %zu particles shipped here", *n));
-	MPI_Datatype type;
-	MPI_Type_contiguous((int)sizeof *out, MPI_BYTE, &type);
-	MPI_Type_commit(&type);
-	MPI_Alltoallv(out, count, at, type, *got, rcount, rat, type, MPI_COMM_WORLD);
-	MPI_Type_free(&type);
-	free(out);
-	free(count);
-}
-
 /* balance = dynamic, at a cut lz_pedmd_balance_due names (every rank is there): the
  * load since the last look summed over the ranks, the same new cuts everywhere, and
- * when they pay, every rank takes the particles of its new cells and halo from their
- * old owners (ship, lz_pedmd_take_part); the owned counts must then sum to N. LZ_OK
- * or an error. Collective. O(cells), and O(N) when the cuts move. */
+ * when they pay, every rank takes its share of the collected picture. LZ_OK or an
+ * error. Collective. O(cells), and O(N) when the cuts move. */
 static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
 {
 	size_t nc = d->ncells;
@@ -337,19 +309,13 @@ static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
 	free(load);
 	if (!moved)
 		return LZ_OK;
-	memcpy(d->cut, cut, (size_t)(size + 1) * sizeof *cut);
-	lz_pedmd_message *got;
+	lz_pedmd_message *all;
 	size_t n;
-	ship(r, d, rank, size, &got, &n);
-	if ((st = lz_pedmd_take_part(r, got, n)) != LZ_OK)
-		abort_run(rank, st);
-	free(got);
-	unsigned long long owned = lz_pedmd_owned(r, NULL), sum = 0, N = lz_pedmd_system(r)->n;
-	MPI_Allreduce(&owned, &sum, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-	if (sum != N)
-		return lz_error(LZ_EDOM, "after the cuts moved the ranks own %llu of the %llu "
-		                "particles", sum, N);
-	return LZ_OK;
+	collect(r, rank, size, &all, &n);
+	memcpy(d->cut, cut, (size_t)(size + 1) * sizeof *cut);
+	st = lz_pedmd_take(r, all, n);
+	free(all);
+	return st;
 }
 
 /* The two costs of a message that the stub's virtual-time policy models (lz/msg.h),

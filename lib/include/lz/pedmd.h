@@ -63,8 +63,9 @@
  * the last look (lz_pedmd_load_since), all see the same sum and the same new cuts, and
  * each takes its share of the serial picture that the owned particles of all ranks
  * make (lz_pedmd_owned, lz_pedmd_take) — in one process (lz_pedmd_recut) or over MPI
- * (lz-mpi: a sum, then every owned particle goes only to the ranks that need it, its
- * cell's new owner and those that hold the cell as HALO: lz_pedmd_take_part).
+ * (lz-mpi: a sum and an all-gather). The whole picture, not only the particles of a
+ * rank's cells and halo: an owned particle's event may aim at one the rank does not
+ * hold, and whether that event is stale is told by the partner's count now.
  *
  * The clock is re-based (lz_edmd_rebase) at absolute multiples of `rebase` only, the
  * same times as the serial reference (rebase_auto = 0), so that both round alike:
@@ -455,19 +456,11 @@ size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *
 /* At a cut (phase BEGIN, nothing waiting): rank r takes its share, under the cuts now
  * in r->d, of the serial picture that all[0 .. n-1] make — every particle once, from
  * lz_pedmd_owned of all ranks — as lz_pedmd_alloc would from a serial system, so that
- * the run goes on bit for bit (balances + 1): its records, roles, events, cells (each
- * list in the order of the numbers) and heap. In place: no second system. LZ_OK;
- * LZ_EINVAL (r unchanged) when not at a cut or when all[] is not every particle once.
- * O(N + cells). */
+ * the run goes on bit for bit (balances + 1): every record, and its roles, events,
+ * cells (each list in the order of the numbers) and heap. In place: no second system.
+ * LZ_OK; LZ_EINVAL (r unchanged) when not at a cut or when all[] is not every particle
+ * once. O(N + cells). */
 int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n);
-/* The same from the part of the picture that r needs: every particle of the cells it
- * owns or holds as HALO under the new cuts, in any order, none twice; particles of
- * other cells may come too and are left out. That each particle has an owner is the
- * caller's to check (lz-mpi: the owned counts of all ranks sum to N): a part that
- * misses one cannot be told from a part of an emptier system. LZ_OK; LZ_EINVAL (r
- * unchanged) when not at a cut, or a particle comes twice or is not in the system.
- * O(N + cells + n). */
-int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *part, size_t n);
 
 /* Move the cuts of P ranks in one process: every rank between windows at the same
  * time T, nothing waiting; d->cut becomes cut[0 .. P] and every rank takes its share
