@@ -790,7 +790,7 @@ void lz_edmd_list_fetch_ahead(const lz_edmd *e)
 		lz_heap_next_items(h, &c1, &c2);
 	}
 	fetch_neighbours(e, c1);  /* its block was asked for an event ago */
-	int32_t j1 = e->ev[c1].partner, j0 = e->ev[lz_edmd_first(e)].partner;
+	int32_t j1 = e->ev[c1].partner;
 	if (j1 >= 0) {
 		__builtin_prefetch(&e->p[j1]);
 		fetch_block(l, (uint32_t)j1);
@@ -799,8 +799,11 @@ void lz_edmd_list_fetch_ahead(const lz_edmd *e)
 		else
 			lz_calendar_prefetch(e->cal, (uint32_t)j1);
 	}
-	if (e->cal && j0 >= 0)  /* this event's partner: its item came an event ago */
-		lz_calendar_prefetch_links(e->cal, (uint32_t)j0);
+	if (e->cal) {  /* this event's partner: its item came an event ago */
+		int32_t j0 = e->ev[lz_edmd_first(e)].partner;
+		if (j0 >= 0)
+			lz_calendar_prefetch_links(e->cal, (uint32_t)j0);
+	}
 	/* the event after: its record, event and block */
 	__builtin_prefetch(&e->p[c2]);
 	__builtin_prefetch(&e->ev[c2]);

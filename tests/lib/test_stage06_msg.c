@@ -373,48 +373,6 @@ LZ_TEST(pedmd_adopt_takes_the_system_as_alloc_copies_it)
 }
 END_TEST
 
-LZ_TEST(pedmd_take_refuses_without_a_trace_and_files_cells_by_number)
-{
-	/* lz_pedmd_take works in place: a picture it refuses (a particle twice) must leave
-	 * the rank exactly as its twin in a second, identical run; one it takes files each
-	 * cell's list by number, as documented */
-	lz_edmd *s = gas(2, 600, 0.35, 5), *t = gas(2, 600, 0.35, 5);
-	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 2, 2, 0, 4, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, 1.125};
-	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_ROWS, &sp, &pp);
-	lz_pedmd_sim *y = lz_pedmd_sim_alloc(t, LZ_PEDMD_ROWS, &sp, &pp);
-	lz_pedmd_message *all = malloc(s->n * sizeof *all);
-	LZ_REQUIRE_TRUE(x && y && all);
-	ck_assert_int_eq(lz_pedmd_sim_run(x, 0.4), LZ_OK);
-	ck_assert_int_eq(lz_pedmd_sim_run(y, 0.4), LZ_OK);
-	size_t n = 0;
-	for (int k = 0; k < 3; k++) {
-		x->rank[k]->phase = y->rank[k]->phase = LZ_PEDMD_BEGIN;
-		n += lz_pedmd_owned(x->rank[k], all + n);
-	}
-	x->d->cut[1] = y->d->cut[1] = (uint32_t)(s->ncells / 6);
-	for (int k = 0; k < 3; k++) {
-		lz_pedmd_message keep = all[n / 2];
-		all[n / 2] = all[0];
-		ck_assert_int_eq(lz_pedmd_take(y->rank[k], all, n), LZ_EINVAL);
-		ck_assert_msg(strstr(lz_error_message(), "twice") != NULL, "says: %s", lz_error_message());
-		same_rank(x->rank[k], y->rank[k], k);  /* both as they were */
-		all[n / 2] = keep;
-		ck_assert_int_eq(lz_pedmd_take(x->rank[k], all, n), LZ_OK);
-		const lz_edmd *e = x->rank[k]->e;
-		for (uint32_t c = 0; c < e->ncells; c++)
-			for (int32_t i = e->list[c].head; i >= 0 && e->next[i] >= 0; i = e->next[i])
-				LZ_REQUIRE(i < e->next[i], "rank %d: cell %u lists %d before %d", k, c, i,
-				           e->next[i]);
-	}
-	free(all);
-	lz_pedmd_sim_free(x);
-	lz_pedmd_sim_free(y);
-	lz_edmd_free(s);
-	lz_edmd_free(t);
-}
-END_TEST
-
 /* n disks in a box of packing 0.15, all in its bottom third (x < L/3, on a square
  * lattice of spacing 1.2) with Maxwell velocities, gravity 1 along -x: the events
  * happen where the disks are. */
@@ -532,15 +490,18 @@ LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
 	/* what lz-mpi does at a cut, one rank at a time: the owned particles of all ranks
 	 * are every particle once; each rank takes its share under new cuts, and the run
 	 * goes on as the serial run. A picture that misses a particle or holds one twice,
-	 * or a rank in the middle of a window, is refused with a message */
-	lz_edmd *s = gas(2, 600, 0.35, 5), *ref = gas(2, 600, 0.35, 5);
+	 * or a rank in the middle of a window, is refused with a message, and the rank
+	 * taking it in place is left as its twin in a second, identical run (y) */
+	lz_edmd *s = gas(2, 600, 0.35, 5), *ref = gas(2, 600, 0.35, 5), *t = gas(2, 600, 0.35, 5);
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 2, 2, 0, 4, 1e-6, 2e-6, 5e-6};
 	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, 1.125};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_ROWS, &sp, &pp);
-	ck_assert_ptr_nonnull(x);
+	lz_pedmd_sim *y = lz_pedmd_sim_alloc(t, LZ_PEDMD_ROWS, &sp, &pp);
+	LZ_REQUIRE_TRUE(x && y);
 	ck_assert_int_eq(lz_pedmd_sim_run(x, 0.4), LZ_OK);
+	ck_assert_int_eq(lz_pedmd_sim_run(y, 0.4), LZ_OK);
 	for (int k = 0; k < 3; k++)  /* a run that ended at 0.4 waits at a cut there */
-		x->rank[k]->phase = LZ_PEDMD_BEGIN;
+		x->rank[k]->phase = y->rank[k]->phase = LZ_PEDMD_BEGIN;
 	lz_pedmd_message *all = malloc(s->n * sizeof *all);
 	size_t n = 0;
 	for (int k = 0; k < 3; k++)
@@ -553,12 +514,19 @@ LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
 	all[1] = all[0];
 	ck_assert_int_eq(lz_pedmd_take(x->rank[0], all, n), LZ_EINVAL);
 	ck_assert_msg(strstr(lz_error_message(), "twice") != NULL, "says: %s", lz_error_message());
+	same_rank(x->rank[0], y->rank[0], 0);  /* refused without a trace */
 	all[1] = keep;
 	/* new cuts: the middle rank takes a third of the cells more */
 	x->d->cut[1] = (uint32_t)(x->d->ncells / 6);
-	for (int k = 0; k < 3; k++)
+	for (int k = 0; k < 3; k++) {
 		ck_assert_msg(lz_pedmd_take(x->rank[k], all, n) == LZ_OK, "rank %d: %s", k,
 		              lz_error_message());
+		const lz_edmd *e = x->rank[k]->e;  /* each cell's list by number, as documented */
+		for (uint32_t c = 0; c < e->ncells; c++)
+			for (int32_t i = e->list[c].head; i >= 0 && e->next[i] >= 0; i = e->next[i])
+				LZ_REQUIRE(i < e->next[i], "rank %d: cell %u lists particle %d before %d, "
+				           "not by number", k, c, i, e->next[i]);
+	}
 	ck_assert_msg(lz_pedmd_audit(x->rank, 3) == LZ_OK, "after the hand-over: %s",
 	              lz_error_message());
 	ck_assert_int_eq(lz_pedmd_sim_run(x, 1.0), LZ_OK);
@@ -576,8 +544,10 @@ LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
 	x->rank[1]->phase = LZ_PEDMD_DONE;
 	free(all);
 	lz_pedmd_sim_free(x);
+	lz_pedmd_sim_free(y);
 	lz_edmd_free(s);
 	lz_edmd_free(ref);
+	lz_edmd_free(t);
 }
 END_TEST
 
