@@ -65,8 +65,9 @@ static const lz_key keys[] = {
 	{.name = "neighbours", .type = LZ_KEY_ENUM, .def = "auto", .choices = "auto|cells|list",
 	 .help = "where a prediction looks for partners: the 3^dim cells around the particle, "
 	         "or its list of the particles within the shell (rebuilt when it strays half "
-	         "the shell's width beyond σ); auto: lists in 3D from packing 0.35, in 2D "
-	         "from 0.5, where they were measured faster (lesson 05 §10)"},
+	         "the shell's width beyond σ); auto: lists in 3D from packing 0.35 (0.28 "
+	         "below 32768 particles), in 2D from 0.5, where they were measured faster "
+	         "(lesson 05 §10)"},
 	{.name = "shell", .type = LZ_KEY_REAL, .def = "", .min = 1, .max = 4, .min_open = 1,
 	 .unit = "σ",
 	 .help = "neighbours = list: the shell S of a list; unset: 1.3 to 1.5 (3D) or 1.8 (2D) "

@@ -518,7 +518,10 @@ LZ_TEST(edmd_lists_refuse_what_they_cannot_hold)
 	ck_assert_ptr_null(lz_edmd_alloc(&p));
 	ck_assert_msg(lz_edmd_list_pays(3, 100000, 0.5) == LZ_EDMD_LIST &&
 	              lz_edmd_list_pays(3, 100000, 0.1) == LZ_EDMD_CELLS &&
-	              lz_edmd_list_pays(3, 20, 0.5) == LZ_EDMD_CELLS,
-	              "the automatic choice: lists for a dense fluid that fits them, else cells");
+	              lz_edmd_list_pays(3, 20, 0.5) == LZ_EDMD_CELLS &&
+	              lz_edmd_list_pays(3, 10000, 0.3) == LZ_EDMD_LIST &&
+	              lz_edmd_list_pays(3, 100000, 0.3) == LZ_EDMD_CELLS,
+	              "the automatic choice: lists for a dense fluid that fits them (from "
+	              "0.28 in a system that fits the caches, else from 0.35), else cells");
 }
 END_TEST

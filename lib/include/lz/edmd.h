@@ -529,7 +529,8 @@ static inline double lz_edmd_stray(const lz_edmd *e)
 }
 
 /* Whether lists beat cells for n particles at this packing, as lesson 05 §10 measured
- * (3D from η = 0.35, 2D from 0.5), and the box holds lists of the automatic shell:
+ * (3D from η = 0.35, or 0.28 below LZ_EDMD_FAR particles; 2D from 0.5), and the box
+ * holds lists of the automatic shell:
  * LZ_EDMD_LIST or LZ_EDMD_CELLS. O(1). */
 int lz_edmd_list_pays(int dim, size_t n, double packing);
 
