@@ -838,11 +838,6 @@ static int halt(lz_pedmd *r)
 	return st;
 }
 
-/* The next thing to do in time order, if it is due before the window ends: the
- * earliest waiting message or event; *did = 1 when something was done. On a tie the
- * event goes first: a message at the time of one of this rank's events is the other
- * half of the same replicated collision, which the rank must carry out itself (the
- * message then brings the ghost's record this rank computed already). */
 /* The serial engine's look ahead (lz_edmd_fetch_ahead), and the rank's own side of
  * the next event: saving and predicting its particle and partner read their marks,
  * roles, own and ghost events and last news — five arrays of N, each a miss of its
@@ -867,6 +862,11 @@ static void fetch_ahead(const lz_pedmd *r)
 	}
 }
 
+/* The next thing to do in time order, if it is due before the window ends: the
+ * earliest waiting message or event; *did = 1 when something was done. On a tie the
+ * event goes first: a message at the time of one of this rank's events is the other
+ * half of the same replicated collision, which the rank must carry out itself (the
+ * message then brings the ghost's record this rank computed already). */
 static int advance_one(lz_pedmd *r, int *did)
 {
 	lz_edmd *e = r->e;
