@@ -10,7 +10,7 @@
  * The same system (hard spheres, η = 0.3, from the lattice) runs the same number of
  * events with the clock started at T0 = 1 .. 1e14, twice:
  *   - re-based, as the engine does (lz_edmd_set_time: the clock reads T0, now stays
- *     small, lz_edmd_run re-bases every N events): the trajectory cannot depend on T0,
+ *     small, lz_edmd_run re-bases every 8N events): the trajectory cannot depend on T0,
  *     and it does not, bit for bit;
  *   - not re-based: now, every particle's t0 and every heap key are shifted by T0
  *     right after the start and the events are carried out by lz_edmd_step alone

@@ -578,8 +578,8 @@ LZ_TEST(edmd_sort_renumbers_without_changing_the_trajectory)
 	lz_edmd *b = lattice(3, 1500, 0.3, LZ_EDMD_WALLS_NONE, 21);
 	a->sort_every = 1;
 	b->sort_every = 0;
-	ck_assert(lz_edmd_run(a, 30000, INFINITY) == LZ_OK && lz_edmd_run(b, 30000, INFINITY) == LZ_OK);
-	ck_assert_msg(a->rebases >= 15, "30000 events of 1500 particles: %u re-bases", a->rebases);
+	ck_assert(lz_edmd_run(a, 240000, INFINITY) == LZ_OK && lz_edmd_run(b, 240000, INFINITY) == LZ_OK);
+	ck_assert_msg(a->rebases >= 15, "240000 events of 1500 particles: %u re-bases", a->rebases);
 	ck_assert_msg(a->collisions == b->collisions && a->crossings == b->crossings &&
 	                      a->stale == b->stale,
 	              "sorted and unsorted runs differ: %llu/%llu collisions, %llu/%llu crossings, "

@@ -38,7 +38,7 @@
  *
  * Round-off (DynamO). A double holds 16 digits: an absolute time of 10^12 leaves a
  * resolution of 10^-4 for the events, which is an overlap. So `now` is kept small:
- * every N events the run brings every particle up to date and subtracts `now` from
+ * every 8N events the run brings every particle up to date and subtracts `now` from
  * every time (lz_edmd_rebase); the time already run is kept apart in t_base.
  *
  * Memory: 64 bytes of particle, 8 of event, 16 + 4 of heap, 4 of cell list, and 8 per
@@ -161,10 +161,10 @@ typedef struct {
 	                           re-bases (lz_edmd_sort); 0: never. Default 0: no gain
 	                           once the loop prefetches (lesson 05 §9) */
 	unsigned rebases;       /* re-bases so far */
-	int rebase_auto;        /* 1 (the default): lz_edmd_run re-bases every max(n, 1024)
-	                           events; 0: only when asked (lz_edmd_rebase) — for a run
-	                           that must re-base at given absolute times, as the serial
-	                           reference of the parallel engine (lz/pedmd.h) does */
+	int rebase_auto;        /* 1 (the default): lz_edmd_run re-bases every 8 max(n,
+	                           1024) events; 0: only when asked (lz_edmd_rebase) — for
+	                           a run that must re-base at given absolute times, as the
+	                           serial reference of the parallel engine (lz/pedmd.h) does */
 	int prefetch;           /* 1: the arrays outgrow the caches (n >= LZ_EDMD_FAR), so
 	                           the loop asks for the memory it will read next ahead of
 	                           time; 0: it would only cost instructions. Set by
@@ -375,10 +375,10 @@ int lz_edmd_start(lz_edmd *e);
 
 /* Run events until `events` more have been carried out or the absolute time reaches
  * t_stop (INFINITY: no limit); at t_stop every particle is brought to t_stop. Re-bases
- * every max(n, 1024) events (unless rebase_auto is 0) and renumbers the particles cell
+ * every 8 max(n, 1024) events (unless rebase_auto is 0) and renumbers the particles cell
  * by cell at each re-base when sort_every asks.
  * LZ_EINVAL when t_stop is before the clock (time does not run backwards).
- * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: max(n, 1024) events,
+ * LZ_EPHYS with lz_error: inelastic collapse (the clock stalls: 8 max(n, 1024) events,
  * most of them collisions, in less than 1e-12 of the time a particle at the current
  * speed needs to fly 1 σ — crossings at one instant, as of a lattice start, are
  * finite and do not count) or nothing left to happen. O(events · log N). */
