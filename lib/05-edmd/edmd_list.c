@@ -3,6 +3,7 @@
  * cells (edmd_cells.c), the heap and the graded bounce; edmd_lib.c and edmd_run.c call
  * it, never the other way round. */
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -547,6 +548,80 @@ static double wall_time(const lz_edmd *e, uint8_t flags, const double r[3], cons
 	return best;
 }
 
+/* Four pairs at a time: a vector of four doubles, and of four comparison results. */
+typedef double v4 __attribute__((vector_size(32)));
+typedef long long m4 __attribute__((vector_size(32)));
+
+/* The state of four particles, one lane each: position, velocity and own clock. */
+typedef struct {
+	v4 r[3], v[3], t0;
+} four;
+
+_Static_assert(offsetof(lz_edmd_particle, v) == 24 && offsetof(lz_edmd_particle, t0) == 48 &&
+                       sizeof(lz_edmd_particle) == 64,
+               "four_of reads a record as r0 r1 r2 v0 | v1 v2 t0 (count, cell)");
+
+/* Lanes i, j, k, l of the eight of x and y (x's 0-3, y's 4-7). */
+#ifdef __clang__
+#define PICK(x, y, i, j, k, l) __builtin_shufflevector(x, y, i, j, k, l)
+#else
+#define PICK(x, y, i, j, k, l) __builtin_shuffle(x, y, (m4){i, j, k, l})
+#endif
+
+/* Rows a, b, c, d of four lanes each as columns (a 4 x 4 transpose), in place. */
+static inline __attribute__((always_inline)) void transpose(v4 *a, v4 *b, v4 *c, v4 *d)
+{
+	v4 t0 = PICK(*a, *b, 0, 4, 2, 6), t1 = PICK(*a, *b, 1, 5, 3, 7);
+	v4 t2 = PICK(*c, *d, 0, 4, 2, 6), t3 = PICK(*c, *d, 1, 5, 3, 7);
+	*a = PICK(t0, t2, 0, 1, 4, 5);
+	*b = PICK(t1, t3, 0, 1, 4, 5);
+	*c = PICK(t0, t2, 2, 3, 6, 7);
+	*d = PICK(t1, t3, 2, 3, 6, 7);
+}
+
+/* Records a, b, c, d: their first (h = 0) or second 32 bytes, as rows. */
+static inline __attribute__((always_inline)) void
+rows(const lz_edmd_particle *a, const lz_edmd_particle *b, const lz_edmd_particle *c,
+     const lz_edmd_particle *d, int h, v4 x[4])
+{
+	memcpy(&x[0], h ? &a->v[1] : a->r, sizeof x[0]);
+	memcpy(&x[1], h ? &b->v[1] : b->r, sizeof x[1]);
+	memcpy(&x[2], h ? &c->v[1] : c->r, sizeof x[2]);
+	memcpy(&x[3], h ? &d->v[1] : d->r, sizeof x[3]);
+}
+
+/* Particles a, b, c, d as lanes: each record read as two halves of 32 bytes (r0 r1 r2
+ * v0 | v1 v2 t0, count and cell), turned into columns by two transposes — 8 loads and
+ * 16 shuffles instead of 28 loads of one number each and their inserts (with lanes
+ * below, the prediction ran 1.03 times as fast at eta = 0.5, N = 10^4). */
+static inline __attribute__((always_inline)) void
+four_of(const lz_edmd_particle *a, const lz_edmd_particle *b, const lz_edmd_particle *c,
+        const lz_edmd_particle *d, four *f)
+{
+	v4 x[4], y[4];
+	rows(a, b, c, d, 0, x);
+	rows(a, b, c, d, 1, y);
+	transpose(&x[0], &x[1], &x[2], &x[3]);
+	transpose(&y[0], &y[1], &y[2], &y[3]);
+	*f = (four){{x[0], x[1], x[2]}, {x[3], y[0], y[1]}, y[2]};
+}
+
+/* Bit k set when lane k of a comparison is true: its sign bits, two lanes at a time
+ * (SSE2, in both builds of the prediction; 2 instructions where the lanes one by one
+ * took 12). */
+static inline __attribute__((always_inline)) unsigned lanes(const m4 *ok)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+	typedef double v2 __attribute__((vector_size(16)));
+	v2 lo, hi;
+	memcpy(&lo, ok, sizeof lo);
+	memcpy(&hi, (const char *)ok + sizeof lo, sizeof hi);
+	return (unsigned)__builtin_ia32_movmskpd(lo) | (unsigned)__builtin_ia32_movmskpd(hi) << 2;
+#else
+	return (unsigned)(((*ok)[0] & 1) | ((*ok)[1] & 2) | ((*ok)[2] & 4) | ((*ok)[3] & 8));
+#endif
+}
+
 /* The earliest collision of i (at ri, vi now) with its neighbours, if before best:
  * its time from now (else best) returned, its partner in *ev.
  * Two passes without a branch on the data (whether a pair approaches is a coin toss
@@ -561,8 +636,6 @@ neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3]
 	const double now = e->now, g = e->g, L = e->L, half = 0.5 * e->L;
 	/* best may be +INFINITY (a particle at rest alone): 2 b · bound must not be 0 · ∞ */
 	const double bound = best < 1e300 ? best : 1e300;
-	typedef double v4 __attribute__((vector_size(32)));
-	typedef long long m4 __attribute__((vector_size(32)));
 	v4 kb[64], kc[64], kd[64];  /* pair k's b, c and disc: kb[k / 4][k % 4] */
 	uint64_t keep[4] = {0, 0, 0, 0};  /* bit k: pair k may collide before the bound */
 	const v4 zero = {0, 0, 0, 0}, one = zero + 1, twob = zero + 2 * bound;
@@ -570,17 +643,13 @@ neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3]
 	const v4 wx = zero + vi[0], wy = zero + vi[1], wz = zero + vi[2];
 	const v4 vL = zero + L, vh = zero + half;
 	for (int k = 0; k < n; k += 4) {
-		const lz_edmd_particle *p = &e->p[nb[k]];
-		const lz_edmd_particle *q = &e->p[nb[k + 1 < n ? k + 1 : k]];
-		const lz_edmd_particle *s = &e->p[nb[k + 2 < n ? k + 2 : k]];
-		const lz_edmd_particle *u = &e->p[nb[k + 3 < n ? k + 3 : k]];
-		v4 dt = vnow - (v4){p->t0, q->t0, s->t0, u->t0};
-		v4 ux = {p->v[0], q->v[0], s->v[0], u->v[0]};
-		v4 uy = {p->v[1], q->v[1], s->v[1], u->v[1]};
-		v4 uz = {p->v[2], q->v[2], s->v[2], u->v[2]};
-		v4 d0 = (v4){p->r[0], q->r[0], s->r[0], u->r[0]} + ux * dt - vx;
-		v4 d1 = (v4){p->r[1], q->r[1], s->r[1], u->r[1]} + uy * dt - vy;
-		v4 d2 = (v4){p->r[2], q->r[2], s->r[2], u->r[2]} + uz * dt - vz;
+		four f;
+		four_of(&e->p[nb[k]], &e->p[nb[k + 1 < n ? k + 1 : k]], &e->p[nb[k + 2 < n ? k + 2 : k]],
+		        &e->p[nb[k + 3 < n ? k + 3 : k]], &f);
+		v4 dt = vnow - f.t0, ux = f.v[0], uy = f.v[1], uz = f.v[2];
+		v4 d0 = f.r[0] + ux * dt - vx;
+		v4 d1 = f.r[1] + uy * dt - vy;
+		v4 d2 = f.r[2] + uz * dt - vz;
 		ux -= wx;
 		uy -= wy;
 		uz -= wz;
@@ -604,7 +673,7 @@ neighbours_first(const lz_edmd *e, const uint32_t *nb, int n, const double ri[3]
 		kb[k / 4] = b;
 		kc[k / 4] = c;
 		kd[k / 4] = disc;
-		uint64_t bits = (uint64_t)((ok[0] & 1) | (ok[1] & 2) | (ok[2] & 4) | (ok[3] & 8));
+		uint64_t bits = lanes(&ok);
 		int left = n - k < 4 ? n - k : 4;
 		keep[k / 64] |= (bits & ((1u << left) - 1)) << (k % 64);
 	}
