@@ -241,6 +241,9 @@ static int take_system(lz_pedmd *r, const lz_edmd *s)
 		take_particle(r, i, r->cls[s->p[i].cell], lz_heap_key(s->heap, i), s->ev[i]);
 	if (fill_cells(r, s) != LZ_OK)
 		return LZ_ENOMEM;
+	for (uint32_t i = 0; i < s->n; i++)  /* after s's lists are read: s may be r's own */
+		if (r->role[i] == LZ_PEDMD_ABSENT)
+			r->e->p[i].count = LZ_PEDMD_UNKNOWN;  /* what a rank need not hold (lz/pedmd.h) */
 	fill_heap(r);
 	return LZ_OK;
 }
@@ -386,11 +389,14 @@ size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
 	return lz_pedmd_owned_part(r, &from, out, SIZE_MAX);
 }
 
-/* LZ_OK when all[0 .. n-1] names particles of the system, each once (a bit of role[]
- * marks them for the while); else LZ_EINVAL, and r as it was. O(n). */
+/* A bit of role[] that marks a particle between lz_pedmd_take_begin and _end (and
+ * while check_picture runs): it came in the picture. */
+enum { TAKEN = 0x80 };
+
+/* LZ_OK when all[0 .. n-1] names particles of the system, each once (TAKEN marks them
+ * for the while); else LZ_EINVAL, and r as it was. O(n). */
 static int check_picture(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 {
-	enum { TAKEN = 0x80 };
 	const lz_edmd *e = r->e;
 	size_t k = 0;
 	int st = LZ_OK;
@@ -408,6 +414,78 @@ static int check_picture(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 	return st;
 }
 
+int lz_pedmd_take_begin(lz_pedmd *r)
+{
+	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
+		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
+		                "message waiting", r->rank);
+	const lz_edmd *e = r->e;
+	r->nformer = 0;
+	for (uint32_t i = 0; i < e->n; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED) {
+			if (lz_pedmd_grow((void **)&r->former, &r->capformer, r->nformer,
+			                  sizeof *r->former))
+				return LZ_ENOMEM;
+			r->former[r->nformer++] = i;
+		}
+	for (uint32_t i = 0; i < e->n; i++)
+		r->role[i] = LZ_PEDMD_ABSENT;
+	classify_cells(r);
+	return LZ_OK;
+}
+
+/* The records of former owned particles stay as they were until _end: only their old
+ * owner, this rank, sends them, so what comes back in _part is the same. */
+size_t lz_pedmd_take_share(const lz_pedmd *r, size_t *from, lz_pedmd_message *out,
+                           size_t most)
+{
+	const lz_edmd *e = r->e;
+	size_t k = 0;
+	for (; *from < r->nformer && k < most; k++, ++*from) {
+		uint32_t i = r->former[*from];
+		out[k] = (lz_pedmd_message){e->now, i, LZ_PEDMD_MIGRATE, e->p[i], r->own[i]};
+	}
+	return k;
+}
+
+int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *m, size_t n)
+{
+	lz_edmd *e = r->e;
+	for (size_t k = 0; k < n; k++) {
+		uint32_t i = m[k].id;
+		if (i >= e->n || m[k].p.cell >= e->ncells || (r->role[i] & TAKEN))
+			return lz_error(LZ_EINVAL, "rank %d: particle %u came twice in the picture, or is "
+			                "not in the system (or its cell %u)", r->rank, i, m[k].p.cell);
+		uint8_t cls = r->cls[m[k].p.cell];
+		if (cls != LZ_PEDMD_FAR) {
+			e->p[i] = m[k].p;
+			e->ev[i] = m[k].event.ev;
+		}
+		take_particle(r, i, cls, m[k].event.t, m[k].event.ev);
+		r->role[i] |= TAKEN;
+	}
+	return LZ_OK;
+}
+
+void lz_pedmd_take_end(lz_pedmd *r)
+{
+	lz_edmd *e = r->e;
+	for (uint32_t i = 0; i < e->n; i++) {
+		if (!(r->role[i] & TAKEN))
+			take_particle(r, i, LZ_PEDMD_FAR, -INFINITY, (lz_edmd_event){LZ_EDMD_NONE, 0});
+		r->role[i] &= (uint8_t)~TAKEN;
+		if (r->role[i] == LZ_PEDMD_ABSENT)
+			e->p[i].count = LZ_PEDMD_UNKNOWN;  /* what a rank need not hold (lz/pedmd.h) */
+	}
+	lz_edmd_cell_clear(e);
+	for (uint32_t i = (uint32_t)e->n; i-- > 0;)  /* at the heads: each list by number */
+		if (r->role[i] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, i, e->p[i].cell);
+	fill_heap(r);
+	r->nformer = 0;
+	r->counts.balances++;
+}
+
 int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 {
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
@@ -417,24 +495,13 @@ int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
 		                r->rank, n, r->e->n);
 	int st = check_picture(r, all, n);  /* n of them, none twice: every particle once */
-	if (st != LZ_OK)
-		return st;
-	lz_edmd *e = r->e;
-	classify_cells(r);
-	for (size_t k = 0; k < n; k++) {  /* every record, the absent ones' too: their counts
-	                                      tell whether an event aimed at them is stale */
-		uint32_t i = all[k].id;
-		e->p[i] = all[k].p;
-		e->ev[i] = all[k].event.ev;
-		take_particle(r, i, r->cls[e->p[i].cell], all[k].event.t, all[k].event.ev);
-	}
-	lz_edmd_cell_clear(e);
-	for (uint32_t i = (uint32_t)e->n; i-- > 0;)  /* at the heads: each list by number */
-		if (r->role[i] != LZ_PEDMD_ABSENT)
-			lz_edmd_cell_insert(e, i, e->p[i].cell);
-	fill_heap(r);
-	r->counts.balances++;
-	return LZ_OK;
+	if (st == LZ_OK)
+		st = lz_pedmd_take_begin(r);
+	if (st == LZ_OK)
+		st = lz_pedmd_take_part(r, all, n);
+	if (st == LZ_OK)
+		lz_pedmd_take_end(r);
+	return st;
 }
 
 int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut)
@@ -483,6 +550,7 @@ void lz_pedmd_free(lz_pedmd *r)
 	free(r->saved);
 	free(r->wlog);
 	free(r->clog);
+	free(r->former);
 	free(r);
 }
 

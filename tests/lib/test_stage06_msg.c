@@ -551,6 +551,69 @@ LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
 }
 END_TEST
 
+LZ_TEST(pedmd_take_in_shares_hands_over_what_each_rank_holds)
+{
+	/* what lz-mpi does when the cuts move: each rank sends the particles it owned to
+	 * the ranks that hold their cells under the new cuts (owner and halo), a few at a
+	 * time, and never sees the whole picture. A falling sediment (curved paths) on
+	 * three ranks: every record a rank does not hold then has an unknown count, the
+	 * invariants hold, a particle sent twice is refused, and the run goes on as the
+	 * serial run, bit for bit */
+	lz_edmd *s = sediment(800), *ref = sediment(800);
+	lz_stub_params sp = {3, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.05, 0, 16, 0, 1.125};
+	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
+	ck_assert_ptr_nonnull(x);
+	ck_assert_int_eq(lz_pedmd_sim_run(x, 1.0), LZ_OK);
+	for (int k = 0; k < 3; k++)  /* a run that ended at 1.0 waits at a cut there */
+		x->rank[k]->phase = LZ_PEDMD_BEGIN;
+	x->d->cut[1] = (uint32_t)(x->d->ncells / 2);  /* the floor's cells: rank 0 had a third */
+	x->d->cut[2] = (uint32_t)(x->d->ncells * 3 / 4);
+	for (int k = 0; k < 3; k++)
+		ck_assert_int_eq(lz_pedmd_take_begin(x->rank[k]), LZ_OK);
+	lz_pedmd_message part[7];
+	int to[27];
+	for (int k = 0; k < 3; k++) {
+		size_t from = 0, n;
+		while ((n = lz_pedmd_take_share(x->rank[k], &from, part, 7)) > 0)
+			for (size_t m = 0; m < n; m++) {
+				to[0] = lz_pedmd_owner(x->d, part[m].p.cell);
+				int h = 1 + lz_pedmd_listeners(s, x->d, to[0], part[m].p.cell, to + 1);
+				while (h-- > 0)
+					LZ_REQUIRE(lz_pedmd_take_part(x->rank[to[h]], &part[m], 1) == LZ_OK,
+					           "rank %d: %s", to[h], lz_error_message());
+			}
+	}
+	to[0] = lz_pedmd_owner(x->d, part[0].p.cell);  /* the last one sent, again */
+	ck_assert_int_eq(lz_pedmd_take_part(x->rank[to[0]], &part[0], 1), LZ_EINVAL);
+	ck_assert_msg(strstr(lz_error_message(), "twice") != NULL, "says: %s", lz_error_message());
+	for (int k = 0; k < 3; k++) {
+		lz_pedmd_take_end(x->rank[k]);
+		const lz_edmd *e = x->rank[k]->e;
+		for (uint32_t i = 0; i < e->n; i++)
+			LZ_REQUIRE(x->rank[k]->role[i] != LZ_PEDMD_ABSENT ||
+			           e->p[i].count == LZ_PEDMD_UNKNOWN, "rank %d keeps particle %u's old "
+			           "record (count %u): an event aimed at it could pass for a live one",
+			           k, i, e->p[i].count);
+	}
+	ck_assert_msg(lz_pedmd_audit(x->rank, 3) == LZ_OK, "after the hand-over: %s",
+	              lz_error_message());
+	ck_assert_msg(lz_pedmd_sim_run(x, 3.0) == LZ_OK, "the run: %s", lz_error_message());
+	ck_assert_int_eq(lz_pedmd_serial(ref, 1.0, 0.5), LZ_OK);  /* stopped there too */
+	ck_assert_int_eq(lz_pedmd_serial(ref, 3.0, 0.5), LZ_OK);
+	lz_pedmd_counts c = lz_pedmd_sim_counts(x);
+	ck_assert_msg(c.committed == ref->events, "%llu events committed, %llu serially",
+	              (unsigned long long)c.committed, (unsigned long long)ref->events);
+	lz_pedmd_sim_gather(x, s);
+	for (uint32_t i = 0; i < s->n; i++)
+		LZ_REQUIRE(memcmp(&s->p[i], &ref->p[i], sizeof ref->p[i]) == 0, "particle %u differs "
+		      "from the serial run after the hand-over in shares", i);
+	lz_pedmd_sim_free(x);
+	lz_edmd_free(s);
+	lz_edmd_free(ref);
+}
+END_TEST
+
 LZ_TEST(pedmd_rollback_check_reruns_every_window_alike)
 {
 	/* every window rolled back and run again, as the schedule then goes: the same end;

@@ -94,7 +94,7 @@ for np in 1 2 3 4; do
 done
 
 # Cuts that move: the sediment's load sinks to the floor, the ranks move their cuts
-# after it (all-gathering the particles) or start from a pilot run's, and the run is
+# after it (handing the particles over) or start from a pilot run's, and the run is
 # still the serial run, bit for bit.
 SEDIMENT=datasets/scenes/06-sediment.scene
 for np in 2 3; do

@@ -18,8 +18,9 @@
  * stub: its committed events per cell do not depend on the schedule) and takes the
  * same cuts. balance = dynamic: at every cut that lz_pedmd_balance_due names, the
  * ranks sum their load since the last look (MPI_Allreduce), all find the same new
- * cuts, and when these pay every rank all-gathers the owned particles (the serial
- * picture, O(N) a process) and takes its share (lz_pedmd_take).
+ * cuts, and when these pay every particle goes from its owner to the ranks that now
+ * hold its cell (its new owner and those with the cell as halo), in rounds, never the
+ * whole picture at once (lz_pedmd_take_begin .. _end).
  *
  * Exit status, the same on every process: 0 success; 1 the run failed or differs from
  * the serial run; 2 bad input (usage, scene file, key, value, ranks). A failure while
@@ -179,42 +180,6 @@ static lz_pedmd_counts counts_of_all(const lz_pedmd *r, int rank, int size)
 	return sum;
 }
 
-/* The owned particles of every rank (lz_pedmd_owned), on every rank: a malloc'd
- * array in *all, their number in *n. LZ_OK; LZ_EDOM when the ranks own more than N.
- * O(N). Collective over MPI_COMM_WORLD. */
-static int collect(const lz_pedmd *r, int rank, int size, lz_pedmd_message **all, size_t *n)
-{
-	size_t N = lz_pedmd_system(r)->n;
-	int mine = (int)lz_pedmd_owned(r, NULL);
-	lz_pedmd_message *own = malloc((size_t)(mine ? mine : 1) * sizeof *own);
-	int *count = malloc(2 * (size_t)size * sizeof *count);
-	*all = malloc(N * sizeof **all);
-	*n = 0;
-	if (!own || !count || !*all) {
-		lz_error(LZ_ENOMEM, "no memory to collect %zu particles", N);
-		abort_run(rank, LZ_ENOMEM);
-	}
-	lz_pedmd_owned(r, own);
-	MPI_Allgather(&mine, 1, MPI_INT, count, 1, MPI_INT, MPI_COMM_WORLD);
-	int *at = count + size, st = LZ_OK;
-	for (int q = 0; q < size; q++) {  /* <= N < 2^31: every displacement is an int */
-		at[q] = (int)*n;
-		*n += (size_t)count[q];
-		if (*n > N)
-			st = lz_error(LZ_EDOM, "the ranks own more than the %zu particles", N);
-	}
-	if (st != LZ_OK)
-		abort_run(rank, st);
-	MPI_Datatype type;
-	MPI_Type_contiguous((int)sizeof *own, MPI_BYTE, &type);
-	MPI_Type_commit(&type);
-	MPI_Allgatherv(own, mine, type, *all, count, at, type, MPI_COMM_WORLD);
-	MPI_Type_free(&type);
-	free(own);
-	free(count);
-	return LZ_OK;
-}
-
 /* What a process holds. */
 typedef struct {
 	lz_scene *s;
@@ -225,8 +190,9 @@ typedef struct {
 	double pilot_ratio;  /* balance = pilot: the busiest rank's share, pilot cuts / even */
 } lz_mpi_run;
 
-/* Particles a round of gather() brings to rank 0, from all ranks together: the
- * picture arrives in pieces of 6.8 MB, never all at once. */
+/* Particles a round of gather() brings to rank 0, from all ranks together, and that
+ * all ranks together send in a round of hand_over() (each one to the ranks that hold
+ * its cell): the picture moves in pieces of 6.8 MB, never all at once. */
 #define GATHER_ROUND 65536
 
 /* A round's m particles written into out on rank 0, each once (seen[]): LZ_OK, or
@@ -291,10 +257,102 @@ static int gather(lz_mpi_run *x, int rank, int size)
 	return st;
 }
 
+/* The ranks that hold cell c under the cuts in d — its owner, then those with c as
+ * HALO — into to[]; their number. */
+static int holders(const lz_edmd *e, const lz_pedmd_domains *d, uint32_t c, int *to)
+{
+	to[0] = lz_pedmd_owner(d, c);
+	return 1 + lz_pedmd_listeners(e, d, to[0], c, to + 1);
+}
+
+/* Buffers of the hand-over: what a round sends, sorted by rank, and what it receives;
+ * count[], at[]: sent to each rank and where, then received from each and where;
+ * fill[]: where the next one for each rank goes. */
+typedef struct {
+	lz_pedmd_message *part, *out, *in;
+	size_t capout, capin;
+	int *count, *at, *rcount, *rat, *fill;
+} shares;
+
+/* One round of the hand-over: at most `chunk` particles this rank owned, from *from
+ * on, each sent to the ranks that hold its cell now, and what comes here taken.
+ * LZ_OK or an error. Collective. */
+static int share_round(lz_pedmd *r, const lz_pedmd_domains *d, int size, size_t *from,
+                       size_t chunk, shares *b, MPI_Datatype type)
+{
+	const lz_edmd *e = lz_pedmd_system(r);
+	size_t n = lz_pedmd_take_share(r, from, b->part, chunk), total = 0, got = 0;
+	int to[27];
+	memset(b->count, 0, (size_t)size * sizeof *b->count);
+	for (size_t k = 0; k < n; k++)
+		for (int h = holders(e, d, b->part[k].p.cell, to); h-- > 0;)
+			b->count[to[h]]++;
+	for (int q = 0; q < size; q++) {  /* <= 27 N < 2^31 for N < 2^26 */
+		b->at[q] = b->fill[q] = (int)total;
+		total += (size_t)b->count[q];
+	}
+	if (lz_pedmd_grow((void **)&b->out, &b->capout, total, sizeof *b->out))
+		return LZ_ENOMEM;
+	for (size_t k = 0; k < n; k++)
+		for (int h = holders(e, d, b->part[k].p.cell, to); h-- > 0;)
+			b->out[b->fill[to[h]]++] = b->part[k];
+	MPI_Alltoall(b->count, 1, MPI_INT, b->rcount, 1, MPI_INT, MPI_COMM_WORLD);
+	for (int q = 0; q < size; q++) {
+		b->rat[q] = (int)got;
+		got += (size_t)b->rcount[q];
+	}
+	int st = lz_pedmd_grow((void **)&b->in, &b->capin, got, sizeof *b->in), all;
+	MPI_Allreduce(&st, &all, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);  /* all or none */
+	if (all != LZ_OK)
+		return st != LZ_OK ? st : lz_error(LZ_ENOMEM, "another rank ran out of memory");
+	MPI_Alltoallv(b->out, b->count, b->at, type, b->in, b->rcount, b->rat, type,
+	              MPI_COMM_WORLD);
+	return lz_pedmd_take_part(r, b->in, got);
+}
+
+/* Every rank takes its share of the new cuts in d: the particles of its cells and
+ * halo, sent by their owners under the old cuts in rounds of GATHER_ROUND / size a
+ * rank (lz_pedmd_take_begin, _share, _part, _end), never the whole picture; then the
+ * ranks must own N together. LZ_OK or an error. Collective. */
+static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
+{
+	size_t N = lz_pedmd_system(r)->n, chunk = GATHER_ROUND / (size_t)size, from = 0;
+	int need = (int)((lz_pedmd_owned(r, NULL) + chunk - 1) / chunk), rounds;
+	MPI_Allreduce(&need, &rounds, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+	shares b = {.part = malloc(chunk * sizeof *b.part),
+	            .count = malloc(5 * (size_t)size * sizeof *b.count)};
+	if (!b.part || !b.count)
+		return lz_error(LZ_ENOMEM, "no memory to hand %zu particles over", N);
+	b.at = b.count + size;
+	b.rcount = b.at + size;
+	b.rat = b.rcount + size;
+	b.fill = b.rat + size;
+	MPI_Datatype type;
+	MPI_Type_contiguous((int)sizeof *b.part, MPI_BYTE, &type);
+	MPI_Type_commit(&type);
+	int st = lz_pedmd_take_begin(r);
+	for (int k = 0; k < rounds && st == LZ_OK; k++)
+		st = share_round(r, d, size, &from, chunk, &b, type);
+	MPI_Type_free(&type);
+	free(b.part);
+	free(b.out);
+	free(b.in);
+	free(b.count);
+	if (st != LZ_OK)
+		return st;
+	lz_pedmd_take_end(r);
+	unsigned long long owned = lz_pedmd_owned(r, NULL), sum;
+	MPI_Allreduce(&owned, &sum, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+	if (sum != N)
+		return lz_error(LZ_EDOM, "after the hand-over the ranks own %llu of the %zu "
+		                "particles", sum, N);
+	return LZ_OK;
+}
+
 /* balance = dynamic, at a cut lz_pedmd_balance_due names (every rank is there): the
  * load since the last look summed over the ranks, the same new cuts everywhere, and
- * when they pay, every rank takes its share of the collected picture. LZ_OK or an
- * error. Collective. O(cells), and O(N) when the cuts move. */
+ * when they pay, the particles handed over to the ranks that now hold their cells.
+ * LZ_OK or an error. Collective. O(cells), and O(N) when the cuts move. */
 static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
 {
 	size_t nc = d->ncells;
@@ -309,13 +367,8 @@ static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
 	free(load);
 	if (!moved)
 		return LZ_OK;
-	lz_pedmd_message *all;
-	size_t n;
-	collect(r, rank, size, &all, &n);
 	memcpy(d->cut, cut, (size_t)(size + 1) * sizeof *cut);
-	st = lz_pedmd_take(r, all, n);
-	free(all);
-	return st;
+	return hand_over(r, d, size);
 }
 
 /* The two costs of a message that the stub's virtual-time policy models (lz/msg.h),

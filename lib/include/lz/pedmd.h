@@ -63,9 +63,19 @@
  * the last look (lz_pedmd_load_since), all see the same sum and the same new cuts, and
  * each takes its share of the serial picture that the owned particles of all ranks
  * make (lz_pedmd_owned, lz_pedmd_take) — in one process (lz_pedmd_recut) or over MPI
- * (lz-mpi: a sum and an all-gather). The whole picture, not only the particles of a
- * rank's cells and halo: an owned particle's event may aim at one the rank does not
- * hold, and whether that event is stale is told by the partner's count now.
+ * (lz-mpi: a sum, then each particle sent only to the ranks that hold its cell under
+ * the new cuts, in rounds: lz_pedmd_take_begin, _share, _part, _end).
+ *
+ * What a rank need not hold. An owned particle's event may aim at a particle the rank
+ * does not hold: its record there is an old one, or LZ_PEDMD_UNKNOWN. Such an event is
+ * stale, as it is in the serial run. A prediction looks only at the block of i's cell,
+ * and a collision that is i's next event comes before i leaves that cell; the partner,
+ * in the block when predicted and touching i at the event, moves on a straight line
+ * between two points of the block (a box) and stays in it unless it collides or
+ * bounces, which changes its count; and the block is owned or HALO, so a partner the
+ * rank does not hold has a new count. Under gravity a path curves and may leave the
+ * block and come back with its count: it comes back as a ghost (its owner's news)
+ * before the event, or that news is late and rolls the window back.
  *
  * The clock is re-based (lz_edmd_rebase) at absolute multiples of `rebase` only, the
  * same times as the serial reference (rebase_auto = 0), so that both round alike:
@@ -98,6 +108,11 @@ enum { LZ_PEDMD_BEGIN, LZ_PEDMD_RUN, LZ_PEDMD_DECIDE, LZ_PEDMD_DONE };
 
 /* Particle roles on one rank. */
 enum { LZ_PEDMD_ABSENT, LZ_PEDMD_OWNED, LZ_PEDMD_GHOST };
+
+/* The count in the record of a particle the rank has not held since it was set up or
+ * took its share of a picture (lz_pedmd_take): no partner count equals it, so an event
+ * aimed at such a particle is stale — as it is in the serial run (see the header). */
+#define LZ_PEDMD_UNKNOWN UINT32_MAX
 
 /* The most ranks. */
 #define LZ_PEDMD_RANKS_MAX 256
@@ -268,6 +283,9 @@ typedef struct lz_pedmd {
 	/* moving cuts (params.balance) */
 	uint64_t next_balance;        /* the windows begun at the next look at the load */
 	double *load0;                /* load[] at the last look (NULL: none yet) */
+	uint32_t *former;             /* between lz_pedmd_take_begin and _end: the particles
+	                                 the rank owned under the old cuts */
+	size_t nformer, capformer;
 } lz_pedmd;
 
 /* ---- graded (solutions/06-parallel/pedmd.c) ---- */
@@ -456,11 +474,31 @@ size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *
 /* At a cut (phase BEGIN, nothing waiting): rank r takes its share, under the cuts now
  * in r->d, of the serial picture that all[0 .. n-1] make — every particle once, from
  * lz_pedmd_owned of all ranks — as lz_pedmd_alloc would from a serial system, so that
- * the run goes on bit for bit (balances + 1): every record, and its roles, events,
- * cells (each list in the order of the numbers) and heap. In place: no second system.
+ * the run goes on bit for bit (balances + 1): the records of the particles in its
+ * cells and halo (every other one's count LZ_PEDMD_UNKNOWN), their roles and events,
+ * the cells (each list in the order of the numbers) and the heap. In place: no second system.
  * LZ_OK; LZ_EINVAL (r unchanged) when not at a cut or when all[] is not every particle
  * once. O(N + cells). */
 int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n);
+
+/* The same in parts, for a picture that comes in shares (lz-mpi): between windows, with
+ * the new cuts in r->d, lz_pedmd_take_begin forgets what the rank held (LZ_OK or
+ * LZ_EINVAL, as lz_pedmd_take); lz_pedmd_take_share lists, from *from on, at most
+ * `most` of the particles the rank owned under the old cuts, as lz_pedmd_owned_part
+ * (what it must send: to the owner of each one's cell under the new cuts and to the
+ * ranks that hold that cell as HALO; their number); lz_pedmd_take_part takes n of the
+ * particles sent to it — those in its cells and halo; others are skipped — LZ_OK, or
+ * LZ_EINVAL when one comes twice or is not in the system (the rank is then half
+ * taken: the run cannot go on); lz_pedmd_take_end gives every particle that did not
+ * come the record count LZ_PEDMD_UNKNOWN, files the cells by number and fills the
+ * heap. That every particle came to its new owner is the caller's check (the owned
+ * particles of all ranks add up to N). O(N + cells) in all, and 4 bytes a formerly
+ * owned particle until the end. */
+int lz_pedmd_take_begin(lz_pedmd *r);
+size_t lz_pedmd_take_share(const lz_pedmd *r, size_t *from, lz_pedmd_message *out,
+                           size_t most);
+int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *m, size_t n);
+void lz_pedmd_take_end(lz_pedmd *r);
 
 /* Move the cuts of P ranks in one process: every rank between windows at the same
  * time T, nothing waiting; d->cut becomes cut[0 .. P] and every rank takes its share
