@@ -3,10 +3,11 @@
 # (and the demo page's number format, tests/lib/check_numfmt.sh),
 # the committed assignments must be current, the stub audit and the grader
 # fixtures must pass, a realistic bug in every graded function must fail the tests
-# that call it (one mutant each; `make mutants` runs them all), `make lesson` must
-# report a failing driver and the plots it breaks (tests/tools/lesson.sh), the
-# handout must work along the student's path (make test, make submit, make grade),
-# and lz-mpi must equal the serial run on 1 to 4 processes (skipped without MPI).
+# that call it (one mutant each, and every other one must still apply; `make mutants`
+# runs them all), `make lesson` must report a failing driver and the plots it breaks
+# (tests/tools/lesson.sh), the handout must work along the student's path (make
+# test, make submit, make grade), and lz-mpi must equal the serial run on 1 to 4
+# processes (skipped without MPI).
 # Usage: check.sh BUILD "STAGES"
 set -uo pipefail
 build=$1
@@ -81,7 +82,7 @@ replay() {  # replay LOG STATUS: the background step's output, and its status
 	cat "$1"
 	return "$2"
 }
-step "mutants, one per graded function (run beside the fixtures)" replay "$mutant_log" "$mutant_status"
+step "mutants, one per graded function, the others applied (run beside the fixtures)" replay "$mutant_log" "$mutant_status"
 step "handout and the student's path" bash lib/tools/handout.sh "$build"
 step "MPI back-end (lz-mpi, P = 1..4)" bash tests/mpi/check.sh "$build"
 

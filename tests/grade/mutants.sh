@@ -25,8 +25,9 @@
 # longer applies or compiles (the reference changed under it), or one that kills
 # nothing.
 #
-# --sample takes one mutant per function (the first by name): what `make check` runs;
-# `make mutants` runs them all.
+# --sample takes one mutant per function (the first by name) and only applies the
+# others (patch --dry-run), so that a reference they no longer fit is still a defect:
+# what `make check` runs; `make mutants` runs them all.
 #
 # Each stage runs in BUILD/mutants/NN-name/, a scratch copy of the sources, with the
 # grader's file limit, building with JOBS parallel jobs (default: the cores). Prints
@@ -151,6 +152,10 @@ leaning_on() {  # leaning_on STAGE FILE FUNCTION -> $tmp/lean-FUNCTION
 	cp "$tmp/pristine" "$src"
 }
 
+outgrown() {  # outgrown STAGE PATCH: the defect of a patch that no longer applies
+	defect "$1/$(basename "$2" .patch): the patch no longer applies to solutions/$1/$(patched_file "$2"): $(head -n 1 "$tmp/patch.log")"
+}
+
 mutant() {  # mutant STAGE PATCH
 	local st=$1 patch=$2 name fn file lean killed survivors declared stale t
 	name=$(basename "$patch" .patch)
@@ -169,7 +174,7 @@ mutant() {  # mutant STAGE PATCH
 	cp "$TREE/solutions/$st/$file" "$tmp/pristine"
 	if ! patch -s -p1 -d "$TREE/solutions/$st" <"$patch" >"$tmp/patch.log" 2>&1; then
 		cp "$tmp/pristine" "$TREE/solutions/$st/$file"
-		defect "$st/$name: the patch no longer applies to solutions/$st/$file: $(head -n 1 "$tmp/patch.log")"
+		outgrown "$st" "$patch"
 		return
 	fi
 	rm -f "$TREE/solutions/$st/$file.orig"
@@ -223,7 +228,11 @@ for st in $(stages); do
 		wanted "$(basename "$p" .patch)" || continue
 		if [ "$SAMPLE" = 1 ]; then
 			fn=$(field "$p" Function | head -n 1)
-			[[ $sampled == *" $fn "* ]] && continue
+			if [[ $sampled == *" $fn "* ]]; then
+				patch --dry-run -s -p1 -d "$TREE/solutions/$st" <"$p" >"$tmp/patch.log" 2>&1 ||
+					outgrown "$st" "$p"
+				continue
+			fi
 			sampled="$sampled$fn "
 		fi
 		mutant "$st" "$p"
