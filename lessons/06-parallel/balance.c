@@ -178,7 +178,7 @@ static int one_setup(bench *b, int P, int kind, point out[2])
 	lz_pedmd_domains *d = lz_pedmd_domains_alloc(b->start, P, kind);
 	if (!d)
 		return LZ_EINVAL;
-	par_setup q = {P, kind, stub_on(&CLUSTER, P, SEED), {P / b->R, REBASE, 0, 0.05, 0, 1, 0, 1.125},
+	par_setup q = {P, kind, stub_on(&CLUSTER, P, SEED), {P / b->R, REBASE, 0, 0.05, 0, 1, 0, 1.125, 1},
 	               NULL, 0};
 	par_result pilot;
 	int st = par_run(b->start, &q, b->t_pilot, b->pilot_ref, NULL, b->pic, b->load, &pilot);

@@ -106,7 +106,7 @@ static int one_run(const lz_edmd *start, const lz_edmd *ref, lz_edmd *pic, doubl
                    int balance, double R, run_result *out)
 {
 	lz_stub_params sp = stub_on(&CLUSTER, P, SEED);
-	lz_pedmd_params pp = {1.0 * P / R, 0.5, balance, 0.25, 1, 1, 0, 1.125};
+	lz_pedmd_params pp = {1.0 * P / R, 0.5, balance, 0.25, 1, 1, 0, 1.125, 1};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(start, LZ_PEDMD_MORTON, &sp, &pp);
 	if (!x)
 		return LZ_EINVAL;

@@ -111,7 +111,7 @@ static int one_gas(lz_lesson *L, const gas *g, int v, double time, lz_data *d, t
 		for (int kind = 0; kind < 2 && st == LZ_OK; kind++)
 			for (int pol = 0; pol < 2 && st == LZ_OK; pol++) {
 				par_setup q = {ranks_of[k], kind, stub_on(&CLUSTER, 1, SEED + 17u * (unsigned)k),
-				               {0.05, g->rebase, 0, 0.1, 1, 16, 0, 1.125}, NULL, 1};
+				               {0.05, g->rebase, 0, 0.1, 1, 16, 0, 1.125, 1}, NULL, 1};
 				if (pol == 0) {  /* random, and every window rolled back and run again */
 					q.sp.policy = LZ_STUB_RANDOM;
 					q.sp.delay = 3;

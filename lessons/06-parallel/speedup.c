@@ -98,7 +98,7 @@ static int one_dim(const gas *g, double time, int np, lz_data *d, dim_result *ou
 			par_result r = {0};
 			double c = NAN;
 			par_setup q = {P, series_kind[s], stub_on(series_machine[s], P, SEED),
-			               {NAN, g->rebase, 0, 0.1, 0, 1, 0, 1.125}, NULL, 0};
+			               {NAN, g->rebase, 0, 0.1, 0, 1, 0, 1.125, 1}, NULL, 0};
 			if ((st = best_window(start, q, R, t_stop, ref, pic, &r, &c)) != LZ_OK)
 				break;
 			if (P == 1)

@@ -88,7 +88,7 @@ static int one_point(const gas *g, double time, int P, double *T1, lz_data *d, d
 	if (st == LZ_OK) {
 		double R = (double)ref->events / time;
 		par_setup q = {P, LZ_PEDMD_MORTON, stub_on(&CLUSTER, P, SEED),
-		               {NAN, g->rebase, 0, 0.1, 0, 1, 0, 1.125}, NULL, 0};
+		               {NAN, g->rebase, 0, 0.1, 0, 1, 0, 1.125, 1}, NULL, 0};
 		st = best_window(start, q, R, t_stop, ref, pic, &r, &c);
 	}
 	double held = st == LZ_OK ? (double)most_held(start, P) : 0;

@@ -112,7 +112,7 @@ int main(int argc, char **argv)
 		pts[k].c = ldexp(1, k - NW / 2);
 		pts[k].work = 1;
 		par_setup q = {P, LZ_PEDMD_MORTON, stub_on(&CLUSTER, P, SEED),
-		               {pts[k].c * P / R, g.rebase, 0, 0.1, 0, 1, 0, 1.125}, NULL, 0};
+		               {pts[k].c * P / R, g.rebase, 0, 0.1, 0, 1, 0, 1.125, 1}, NULL, 0};
 		if (par_run(start, &q, t_stop, ref, NULL, pic, NULL, &pts[k].r) != LZ_OK)
 			return lz_lesson_error(&L);
 		print_point(&pts[k]);
@@ -126,7 +126,7 @@ int main(int argc, char **argv)
 		wk[k].c = pts[best].c;
 		wk[k].work = work_of[k];
 		par_setup q = {P, LZ_PEDMD_MORTON, stub_on(&CLUSTER, P, SEED),
-		               {wk[k].c * P / R, g.rebase, 0, 0.1, 0, wk[k].work, 0, 1.125}, NULL, 0};
+		               {wk[k].c * P / R, g.rebase, 0, 0.1, 0, wk[k].work, 0, 1.125, 1}, NULL, 0};
 		if (par_run(start, &q, t_stop, ref, NULL, pic, NULL, &wk[k].r) != LZ_OK)
 			return lz_lesson_error(&L);
 		print_point(&wk[k]);

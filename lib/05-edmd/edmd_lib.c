@@ -114,7 +114,7 @@ static int choose_cells(const lz_edmd_params *p, double L, double reach)
 
 static int alloc_arrays(lz_edmd *e, int queue)
 {
-	e->list = lz_bigmem_alloc(e->ncells * sizeof *e->list);
+	e->list = lz_bigmem_sparse(e->ncells * sizeof *e->list);  /* see lz_edmd's list */
 	e->next = lz_bigmem_alloc((e->n + 1) * sizeof *e->next);
 	if (e->next)
 		*e->next++ = -1;  /* the sentinel next[-1] */
@@ -183,11 +183,42 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p)
 	return e;
 }
 
+int lz_edmd_grow(lz_edmd *e, size_t n)
+{
+	if (e->lists || e->cal || n < e->n || n >= (size_t)INT32_MAX)
+		return lz_error(LZ_EINVAL, "a system grows to %zu particles: from its %zu, below "
+		                "2^31, with cells and a heap", n, e->n);
+	size_t old = e->n;
+	int32_t *next = lz_bigmem_resize(e->next - 1, (old + 1) * sizeof *next,
+	                                 (n + 1) * sizeof *next);
+	if (next)
+		e->next = next + 1;
+	lz_edmd_particle *p = next ? lz_bigmem_resize(e->p, old * sizeof *p, n * sizeof *p) : NULL;
+	if (p)
+		e->p = p;
+	lz_edmd_event *ev = p ? lz_bigmem_resize(e->ev, old * sizeof *ev, n * sizeof *ev) : NULL;
+	if (ev)
+		e->ev = ev;
+	if (!ev)
+		return lz_error(LZ_ENOMEM, "no memory for %zu particles", n);
+	int st = lz_heap_reserve(e->heap, n);
+	if (st != LZ_OK)
+		return st;
+	memset(e->p + old, 0, (n - old) * sizeof *e->p);
+	for (size_t i = old; i < n; i++) {
+		e->next[i] = -1;
+		e->ev[i] = (lz_edmd_event){LZ_EDMD_NONE, 0};
+	}
+	e->n = n;
+	e->prefetch = n >= LZ_EDMD_FAR;  /* as lz_edmd_alloc would set it for n */
+	return LZ_OK;
+}
+
 void lz_edmd_free(lz_edmd *e)
 {
 	if (!e)
 		return;
-	lz_bigmem_free(e->list);
+	lz_bigmem_sparse_free(e->list, e->ncells * sizeof *e->list);
 	lz_bigmem_free(e->next ? e->next - 1 : NULL);
 	lz_bigmem_free(e->p);
 	lz_bigmem_free(e->ev);

@@ -54,6 +54,29 @@ void lz_heap_free(lz_heap *h)
 	free(h);
 }
 
+int lz_heap_reserve(lz_heap *h, size_t cap)
+{
+	if (cap < h->cap || cap >= LZ_HEAP_NONE)
+		return lz_error(LZ_EINVAL, "heap capacity %zu must be in [%zu, %u)", cap, h->cap,
+		                LZ_HEAP_NONE);
+	size_t f = front(h->arity), b = behind(h->arity), old = h->cap;
+	lz_heap_node *node = lz_bigmem_resize(h->node - f, (f + old + b) * sizeof *node,
+	                                      (f + cap + b) * sizeof *node);
+	if (!node)
+		return lz_error(LZ_ENOMEM, "no memory for a heap of %zu items", cap);
+	h->node = node + f;
+	uint32_t *pos = lz_bigmem_resize(h->pos, old * sizeof *pos, cap * sizeof *pos);
+	if (!pos)
+		return lz_error(LZ_ENOMEM, "no memory for a heap of %zu items", cap);
+	h->pos = pos;
+	for (size_t i = old; i < cap; i++)
+		pos[i] = LZ_HEAP_NONE;
+	for (size_t k = old + b; k < cap + b; k++)  /* past the nodes in use: "never" */
+		h->node[k] = (lz_heap_node){INFINITY, 0};
+	h->cap = cap;
+	return LZ_OK;
+}
+
 void lz_heap_clear(lz_heap *h)
 {
 	h->n = 0;

@@ -115,20 +115,23 @@ static int check_params(const lz_pedmd_params *p)
 		return lz_error(LZ_EINVAL, "recheck = %d: 0 or 1", p->recheck);
 	if (p->work < 1)
 		return lz_error(LZ_EINVAL, "work = %d events a turn: at least 1", p->work);
+	if (p->compact != 0 && p->compact != 1)
+		return lz_error(LZ_EINVAL, "compact = %d: 0 (a slot for every particle) or 1 (local "
+		                "numbering)", p->compact);
 	if (!(p->grow > 1 && p->grow <= 2))
 		return lz_error(LZ_EINVAL, "grow = %g: the window's growth after a commit, in (1, 2]",
 		                p->grow);
 	return LZ_OK;
 }
 
-/* A system like s, with s's particles, cells in s's list order, and no heap yet. */
-static lz_edmd *copy_system(const lz_edmd *s)
+/* A system of n particles (records to come) in s's box, its clock at s's. */
+static lz_edmd *copy_system(const lz_edmd *s, size_t n)
 {
-	lz_edmd_params q = {s->dim, s->n, 0, s->restitution, s->g,
+	lz_edmd_params q = {s->dim, n, 0, s->restitution, s->g,
 	                    s->wall[0] ? (s->wall[1] ? LZ_EDMD_WALLS_BOX : LZ_EDMD_WALLS_X)
 	                               : LZ_EDMD_WALLS_NONE, s->m[0], LZ_EDMD_CELLS, 0, 0};
 	double v1 = s->dim == 3 ? M_PI / 6 : M_PI / 4;
-	q.packing = (double)s->n * v1 / pow(s->L, s->dim);
+	q.packing = (double)n * v1 / pow(s->L, s->dim);
 	lz_edmd *e = lz_edmd_alloc(&q);
 	if (!e)
 		return NULL;
@@ -140,8 +143,6 @@ static lz_edmd *copy_system(const lz_edmd *s)
 	e->L = s->L;  /* the packing's round trip may round L: take the original's bits */
 	for (int a = 0; a < 3; a++)
 		e->w[a] = s->w[a];
-	memcpy(e->p, s->p, s->n * sizeof *e->p);
-	memcpy(e->ev, s->ev, s->n * sizeof *e->ev);
 	e->now = s->now;
 	e->t_base = s->t_base;
 	e->rebase_auto = 0;
@@ -149,9 +150,20 @@ static lz_edmd *copy_system(const lz_edmd *s)
 	return e;
 }
 
-/* Put the present particles into their cells in s's list order. s may be r's own
- * system (lz_pedmd_adopt): every list is read before any is written. LZ_OK or
- * LZ_ENOMEM. O(N + cells), 4 bytes a particle for the while. */
+/* Empty the lists of the cells r holds (owned and HALO; compact: only those, so that
+ * the others' pages never take memory — no prediction reads a FAR cell). O(cells). */
+static void clear_cells(lz_pedmd *r)
+{
+	lz_edmd *e = r->e;
+	for (size_t c = 0; c < e->ncells; c++)
+		if (!r->gid || r->cls[c] != LZ_PEDMD_FAR)
+			e->list[c] = (lz_edmd_list){-1, -1};
+}
+
+/* Put the present particles into their cells in s's list order (s numbers them, r
+ * holds them in slots). s may be r's own system (lz_pedmd_adopt): every list is read
+ * before any is written. LZ_OK or LZ_ENOMEM. O(N + cells), 4 bytes a particle for the
+ * while. */
 static int fill_cells(lz_pedmd *r, const lz_edmd *s)
 {
 	uint32_t *seq = malloc(s->n * sizeof *seq), k = 0;  /* the lists one after another */
@@ -161,10 +173,12 @@ static int fill_cells(lz_pedmd *r, const lz_edmd *s)
 		for (int32_t j = s->list[c].head; j >= 0; j = s->next[j])
 			seq[k++] = (uint32_t)j;
 	lz_edmd *e = r->e;
-	lz_edmd_cell_clear(e);
-	while (k-- > 0)  /* each inserted at its list's head: backwards keeps the order */
-		if (r->role[seq[k]] != LZ_PEDMD_ABSENT)
-			lz_edmd_cell_insert(e, seq[k], e->p[seq[k]].cell);
+	clear_cells(r);
+	while (k-- > 0) {  /* each inserted at its list's head: backwards keeps the order */
+		int64_t i = lz_pedmd_slot(r, seq[k]);
+		if (i >= 0 && r->role[i] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, (uint32_t)i, e->p[i].cell);
+	}
 	free(seq);
 	return LZ_OK;
 }
@@ -193,13 +207,15 @@ static void mark_near(lz_pedmd *r)
 	}
 }
 
-/* Every cell's class for r under the cuts in r->d, the near bits, no read stamps. */
+/* Every cell's class for r under the cuts in r->d, the near bits, no read stamps
+ * (compact: only where r holds the cell; the stamps of FAR cells are never read). */
 static void classify_cells(lz_pedmd *r)
 {
 	lz_pedmd_classify(r->e, r->d, r->rank, r->cls);
 	mark_near(r);
 	for (size_t c = 0; c < r->e->ncells; c++)
-		r->read[c] = -INFINITY;
+		if (!r->gid || r->cls[c] != LZ_PEDMD_FAR)
+			r->read[c] = -INFINITY;
 }
 
 /* Particle i with its event ev at t, in a cell of class k: OWNED, GHOST or ABSENT,
@@ -215,37 +231,68 @@ static void take_particle(lz_pedmd *r, uint32_t i, uint8_t k, double t, lz_edmd_
 }
 
 /* The owned particles into the emptied heap by their own events, the clock at the
- * system's, and the keys of the border's particles from the ghosts aimed at them. */
-static void fill_heap(lz_pedmd *r)
+ * system's, and the keys of the border's particles from the ghosts aimed at them —
+ * in the order of the particles' numbers, whatever their slots. LZ_OK or LZ_ENOMEM. */
+static int fill_heap(lz_pedmd *r)
 {
 	lz_edmd *e = r->e;
+	uint32_t *order = lz_pedmd_by_number(r);
+	if (!order)
+		return LZ_ENOMEM;
 	lz_heap_clear(e->heap);
-	for (uint32_t i = 0; i < e->n; i++)
-		if (r->role[i] == LZ_PEDMD_OWNED)
-			lz_heap_push(e->heap, i, r->own[i].t);
+	for (size_t k = 0; k < r->nslots; k++)
+		if (r->role[order[k]] == LZ_PEDMD_OWNED)
+			lz_heap_push(e->heap, order[k], r->own[order[k]].t);
 	r->clock = e->now;
-	for (uint32_t i = 0; i < e->n; i++)
+	for (size_t k = 0; k < r->nslots; k++) {
+		uint32_t i = order[k];
 		if (r->role[i] == LZ_PEDMD_OWNED && r->cls[e->p[i].cell] == LZ_PEDMD_BORDER)
 			lz_pedmd_retarget(r, i);
+	}
+	free(order);
+	return LZ_OK;
 }
 
-/* The rank's share of system s under its domains r->d: classes, roles, own and ghost
- * events from s's heap keys and events, cells in s's list order, the heap, the read
- * stamps cleared, the clock at s's. r->e already holds s's records (copy_system), or
- * is s itself (lz_pedmd_adopt): s's keys are read before its heap is emptied, its
- * lists before they are rebuilt. */
+/* The slots a compact rank needs for its share of s — the particles in its cells and
+ * halo and the partners of their events — and an eighth more for those it will meet:
+ * room made at once, not by doubling (which would leave the freed halves behind). */
+static size_t held(const lz_pedmd *r, const lz_edmd *s)
+{
+	size_t n = 0;
+	for (uint32_t id = 0; id < s->n; id++) {
+		int32_t j = s->ev[id].partner;
+		n += r->cls[s->p[id].cell] != LZ_PEDMD_FAR ||
+		     (j >= 0 && r->cls[s->p[j].cell] != LZ_PEDMD_FAR);
+	}
+	return n + n / 8 + 64;
+}
+
+/* The rank's share of system s under its domains r->d: records (compact: of the
+ * particles in its cells and halo only), classes, roles, own and ghost events from
+ * s's heap keys and events, cells in s's list order, the heap, the read stamps
+ * cleared, the clock at s's. r->e may be s itself (lz_pedmd_adopt, not compact): s's
+ * keys are read before its heap is emptied, its lists before they are rebuilt. */
 static int take_system(lz_pedmd *r, const lz_edmd *s)
 {
 	classify_cells(r);
-	for (uint32_t i = 0; i < s->n; i++)
-		take_particle(r, i, r->cls[s->p[i].cell], lz_heap_key(s->heap, i), s->ev[i]);
-	if (fill_cells(r, s) != LZ_OK)
+	int st = r->gid ? lz_pedmd_reserve(r, held(r, s)) : LZ_OK;
+	for (uint32_t id = 0; id < s->n && st == LZ_OK; id++) {
+		uint8_t k = r->cls[s->p[id].cell];
+		if (k == LZ_PEDMD_FAR && r->gid)
+			continue;
+		lz_pedmd_message m = {0, id, LZ_PEDMD_MIGRATE, s->p[id], {lz_heap_key(s->heap, id), s->ev[id]}};
+		if ((st = lz_pedmd_incoming(r, &m)) == LZ_OK) {  /* slots for it and its partner */
+			r->e->p[m.id] = m.p;
+			r->e->ev[m.id] = m.event.ev;
+			take_particle(r, m.id, k, m.event.t, m.event.ev);
+		}
+	}
+	if (st != LZ_OK || fill_cells(r, s) != LZ_OK)
 		return LZ_ENOMEM;
-	for (uint32_t i = 0; i < s->n; i++)  /* after s's lists are read: s may be r's own */
+	for (uint32_t i = 0; i < r->e->n; i++)  /* after s's lists are read: s may be r's own */
 		if (r->role[i] == LZ_PEDMD_ABSENT)
 			r->e->p[i].count = LZ_PEDMD_UNKNOWN;  /* what a rank need not hold (lz/pedmd.h) */
-	fill_heap(r);
-	return LZ_OK;
+	return fill_heap(r);
 }
 
 /* size bytes of zeros in huge pages where there are any (lz_bigmem_alloc); NULL when
@@ -257,9 +304,9 @@ static void *zeroed(size_t size)
 }
 
 /* A rank whose own system is e (copy_system of s, or s itself), its share of s
- * taken; e is freed on failure. */
+ * taken, in slots of its own when `compact`; e is freed on failure. */
 static lz_pedmd *rank_of(lz_edmd *e, const lz_edmd *s, const lz_pedmd_domains *d,
-                         lz_msg *msg, const lz_pedmd_params *p)
+                         lz_msg *msg, const lz_pedmd_params *p, int compact)
 {
 	lz_pedmd *r = e ? calloc(1, sizeof *r) : NULL;
 	if (!r) {
@@ -270,27 +317,30 @@ static lz_pedmd *rank_of(lz_edmd *e, const lz_edmd *s, const lz_pedmd_domains *d
 	r->d = d;
 	r->msg = msg;
 	r->p = *p;
+	r->p.compact = compact;
 	r->rank = lz_msg_rank(msg);
-	size_t n = s->n, nc = s->ncells;
+	r->N = s->n;
+	r->nslots = e->n;
+	size_t n = e->n, nc = s->ncells;
 	/* Arrays read at random in every event: huge pages where the kernel has them (at
 	 * 10^6 particles each would otherwise miss the address translation as well as the
 	 * cache; lz/bigmem.h). */
 	r->cls = lz_bigmem_alloc(nc);
 	r->near = malloc((nc + 63) / 64 * sizeof *r->near);
-	r->read = lz_bigmem_alloc(nc * sizeof *r->read);
-	r->load = zeroed(nc * sizeof *r->load);
+	r->read = lz_bigmem_sparse(nc * sizeof *r->read);
+	r->load = lz_bigmem_sparse(nc * sizeof *r->load);
 	r->role = zeroed(n);
 	r->own = lz_bigmem_alloc(n * sizeof *r->own);
 	r->ghost = lz_bigmem_alloc(n * sizeof *r->ghost);
 	r->heard = lz_bigmem_alloc(n * sizeof *r->heard);
 	r->mark = zeroed(n * sizeof *r->mark);
-	r->rmark = zeroed(nc * sizeof *r->rmark);
+	r->rmark = lz_bigmem_sparse(nc * sizeof *r->rmark);
 	if (!r->cls || !r->near || !r->read || !r->load || !r->role || !r->own || !r->ghost ||
 	    !r->heard || !r->mark || !r->rmark) {
 		lz_pedmd_free(r);
 		return lz_error(LZ_ENOMEM, "no memory for a rank of %zu particles", n), NULL;
 	}
-	if (take_system(r, s) != LZ_OK) {
+	if ((compact && lz_pedmd_slots_init(r) != LZ_OK) || take_system(r, s) != LZ_OK) {
 		lz_pedmd_free(r);
 		return NULL;
 	}
@@ -319,7 +369,7 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
 {
 	if (check_rank(s, d, msg, p))
 		return NULL;
-	return rank_of(copy_system(s), s, d, msg, p);
+	return rank_of(copy_system(s, p->compact ? 1 : s->n), s, d, msg, p, p->compact);
 }
 
 lz_pedmd *lz_pedmd_adopt(lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
@@ -335,13 +385,30 @@ lz_pedmd *lz_pedmd_adopt(lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
 		return NULL;
 	}
 	lz_edmd_reset_counts(s);
-	return rank_of(s, s, d, msg, p);
+	if (!p->compact || d->P == 1)  /* one rank holds every particle: no copy */
+		return rank_of(s, s, d, msg, p, 0);
+	lz_pedmd *r = rank_of(copy_system(s, 1), s, d, msg, p, 1);
+	lz_edmd_free(s);  /* the rank holds its share: the whole is not kept */
+	return r;
 }
 
 lz_edmd *lz_pedmd_release(lz_pedmd *r)
 {
 	lz_edmd *e = r->e;
-	r->e = NULL;
+	if (r->gid) {  /* a frame of all N, the owned records at their numbers */
+		if (!(e = copy_system(r->e, r->N))) {
+			lz_pedmd_free(r);
+			return NULL;
+		}
+		memset(e->p, 0, e->n * sizeof *e->p);
+		for (uint32_t i = 0; i < r->nslots; i++)
+			if (r->role[i] == LZ_PEDMD_OWNED)
+				e->p[r->gid[i]] = r->e->p[i];
+		e->now = r->e->now;
+		e->t_base = r->e->t_base;
+	} else {
+		r->e = NULL;
+	}
 	lz_pedmd_free(r);
 	return e;
 }
@@ -357,11 +424,12 @@ int lz_pedmd_balance_due(const lz_pedmd *r, double t_stop)
 int lz_pedmd_load_since(lz_pedmd *r, double *delta)
 {
 	size_t nc = r->e->ncells;
-	if (!r->load0 && !(r->load0 = calloc(nc, sizeof *r->load0)))
+	if (!r->load0 && !(r->load0 = lz_bigmem_sparse(nc * sizeof *r->load0)))
 		return lz_error(LZ_ENOMEM, "no memory for the load of %zu cells", nc);
 	for (size_t c = 0; c < nc; c++) {
 		delta[c] = r->load[c] - r->load0[c];
-		r->load0[c] = r->load[c];
+		if (delta[c] != 0)  /* written where it changed: the rank's own cells */
+			r->load0[c] = r->load[c];
 	}
 	r->next_balance = r->counts.windows + (uint64_t)r->p.balance;
 	return LZ_OK;
@@ -376,7 +444,7 @@ size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *
 	for (; i < e->n && k < most; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED) {
 			if (out)
-				out[k] = (lz_pedmd_message){e->now, i, LZ_PEDMD_MIGRATE, e->p[i], r->own[i]};
+				out[k] = lz_pedmd_outgoing(r, i, LZ_PEDMD_MIGRATE, e->now);
 			k++;
 		}
 	*from = i;
@@ -389,28 +457,27 @@ size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out)
 	return lz_pedmd_owned_part(r, &from, out, SIZE_MAX);
 }
 
-/* A bit of role[] that marks a particle between lz_pedmd_take_begin and _end (and
- * while check_picture runs): it came in the picture. */
+/* A bit of role[] that marks a particle between lz_pedmd_take_begin and _end: it came
+ * in the picture. */
 enum { TAKEN = 0x80 };
 
-/* LZ_OK when all[0 .. n-1] names particles of the system, each once (TAKEN marks them
- * for the while); else LZ_EINVAL, and r as it was. O(n). */
-static int check_picture(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
+/* LZ_OK when all[0 .. n-1] names particles of the system, each once; else LZ_EINVAL
+ * (or LZ_ENOMEM), and r as it was. O(n), a bit a particle for the while. */
+static int check_picture(const lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 {
-	const lz_edmd *e = r->e;
-	size_t k = 0;
+	uint64_t *seen = calloc(r->N / 64 + 1, sizeof *seen);
+	if (!seen)
+		return lz_error(LZ_ENOMEM, "no memory to check a picture of %zu particles", r->N);
 	int st = LZ_OK;
-	for (; k < n && st == LZ_OK; k++) {
+	for (size_t k = 0; k < n && st == LZ_OK; k++) {
 		uint32_t i = all[k].id;
-		if (i >= e->n || all[k].p.cell >= e->ncells || (r->role[i] & TAKEN))
+		if (i >= r->N || all[k].p.cell >= r->e->ncells || (seen[i / 64] >> (i % 64) & 1))
 			st = lz_error(LZ_EINVAL, "rank %d: particle %u is twice in the picture, or not in "
 			              "the system (or its cell %u)", r->rank, i, all[k].p.cell);
 		else
-			r->role[i] |= TAKEN;
+			seen[i / 64] |= UINT64_C(1) << (i % 64);
 	}
-	while (k-- > 0)
-		if (all[k].id < e->n)
-			r->role[all[k].id] &= (uint8_t)~TAKEN;
+	free(seen);
 	return st;
 }
 
@@ -419,55 +486,53 @@ int lz_pedmd_take_begin(lz_pedmd *r)
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
 		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
 		                "message waiting", r->rank);
-	const lz_edmd *e = r->e;
-	r->nformer = 0;
-	for (uint32_t i = 0; i < e->n; i++)
-		if (r->role[i] == LZ_PEDMD_OWNED) {
-			if (lz_pedmd_grow((void **)&r->former, &r->capformer, r->nformer,
-			                  sizeof *r->former))
-				return LZ_ENOMEM;
-			r->former[r->nformer++] = i;
-		}
-	for (uint32_t i = 0; i < e->n; i++)
+	size_t n = lz_pedmd_owned(r, NULL);
+	if (n > 0 && lz_pedmd_grow((void **)&r->former, &r->capformer, n - 1, sizeof *r->former))
+		return LZ_ENOMEM;
+	r->nformer = lz_pedmd_owned(r, r->former);
+	for (uint32_t i = 0; i < r->e->n; i++)
 		r->role[i] = LZ_PEDMD_ABSENT;
+	lz_pedmd_forget(r);
 	classify_cells(r);
 	return LZ_OK;
 }
 
-/* The records of former owned particles stay as they were until _end: only their old
- * owner, this rank, sends them, so what comes back in _part is the same. */
+/* The former owned particles as they were sent: what comes back in _part is the
+ * same. */
 size_t lz_pedmd_take_share(const lz_pedmd *r, size_t *from, lz_pedmd_message *out,
                            size_t most)
 {
-	const lz_edmd *e = r->e;
 	size_t k = 0;
-	for (; *from < r->nformer && k < most; k++, ++*from) {
-		uint32_t i = r->former[*from];
-		out[k] = (lz_pedmd_message){e->now, i, LZ_PEDMD_MIGRATE, e->p[i], r->own[i]};
-	}
+	for (; *from < r->nformer && k < most; k++, ++*from)
+		out[k] = r->former[*from];
 	return k;
 }
 
 int lz_pedmd_take_part(lz_pedmd *r, const lz_pedmd_message *m, size_t n)
 {
-	lz_edmd *e = r->e;
 	for (size_t k = 0; k < n; k++) {
-		uint32_t i = m[k].id;
-		if (i >= e->n || m[k].p.cell >= e->ncells || (r->role[i] & TAKEN))
+		lz_pedmd_message q = m[k];
+		int64_t had = q.id < r->N ? lz_pedmd_slot(r, q.id) : -1;
+		if (q.id >= r->N || q.p.cell >= r->e->ncells || (had >= 0 && (r->role[had] & TAKEN)))
 			return lz_error(LZ_EINVAL, "rank %d: particle %u came twice in the picture, or is "
-			                "not in the system (or its cell %u)", r->rank, i, m[k].p.cell);
-		uint8_t cls = r->cls[m[k].p.cell];
+			                "not in the system (or its cell %u)", r->rank, q.id, q.p.cell);
+		uint8_t cls = r->cls[q.p.cell];
+		if (cls == LZ_PEDMD_FAR && r->gid)
+			continue;  /* compact: no slot for a particle it does not hold */
+		int st = lz_pedmd_incoming(r, &q);
+		if (st != LZ_OK)
+			return st;
 		if (cls != LZ_PEDMD_FAR) {
-			e->p[i] = m[k].p;
-			e->ev[i] = m[k].event.ev;
+			r->e->p[q.id] = q.p;
+			r->e->ev[q.id] = q.event.ev;
 		}
-		take_particle(r, i, cls, m[k].event.t, m[k].event.ev);
-		r->role[i] |= TAKEN;
+		take_particle(r, q.id, cls, q.event.t, q.event.ev);
+		r->role[q.id] |= TAKEN;
 	}
 	return LZ_OK;
 }
 
-void lz_pedmd_take_end(lz_pedmd *r)
+int lz_pedmd_take_end(lz_pedmd *r)
 {
 	lz_edmd *e = r->e;
 	for (uint32_t i = 0; i < e->n; i++) {
@@ -477,13 +542,17 @@ void lz_pedmd_take_end(lz_pedmd *r)
 		if (r->role[i] == LZ_PEDMD_ABSENT)
 			e->p[i].count = LZ_PEDMD_UNKNOWN;  /* what a rank need not hold (lz/pedmd.h) */
 	}
-	lz_edmd_cell_clear(e);
-	for (uint32_t i = (uint32_t)e->n; i-- > 0;)  /* at the heads: each list by number */
-		if (r->role[i] != LZ_PEDMD_ABSENT)
-			lz_edmd_cell_insert(e, i, e->p[i].cell);
-	fill_heap(r);
+	clear_cells(r);
+	uint32_t *order = lz_pedmd_by_number(r);
+	if (!order)
+		return LZ_ENOMEM;
+	for (size_t k = r->nslots; k-- > 0;)  /* at the heads: each list by number */
+		if (r->role[order[k]] != LZ_PEDMD_ABSENT)
+			lz_edmd_cell_insert(e, order[k], e->p[order[k]].cell);
+	free(order);
 	r->nformer = 0;
 	r->counts.balances++;
+	return fill_heap(r);
 }
 
 int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
@@ -491,17 +560,15 @@ int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n)
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
 		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
 		                "message waiting", r->rank);
-	if (n != r->e->n)
+	if (n != r->N)
 		return lz_error(LZ_EINVAL, "rank %d: the picture holds %zu particles, the system %zu",
-		                r->rank, n, r->e->n);
+		                r->rank, n, r->N);
 	int st = check_picture(r, all, n);  /* n of them, none twice: every particle once */
 	if (st == LZ_OK)
 		st = lz_pedmd_take_begin(r);
 	if (st == LZ_OK)
 		st = lz_pedmd_take_part(r, all, n);
-	if (st == LZ_OK)
-		lz_pedmd_take_end(r);
-	return st;
+	return st == LZ_OK ? lz_pedmd_take_end(r) : st;
 }
 
 int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uint32_t *cut)
@@ -511,7 +578,7 @@ int lz_pedmd_recut(lz_pedmd *const *ranks, int P, lz_pedmd_domains *d, const uin
 		    ranks[k]->T != ranks[0]->T)
 			return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, every rank between "
 			                "windows at one time with no message waiting", k);
-	size_t N = ranks[0]->e->n, n = 0;
+	size_t N = ranks[0]->N, n = 0;
 	lz_pedmd_message *all = malloc(N * sizeof *all);
 	if (!all)
 		return lz_error(LZ_ENOMEM, "no memory for the picture of %zu particles", N);
@@ -532,18 +599,19 @@ void lz_pedmd_free(lz_pedmd *r)
 {
 	if (!r)
 		return;
+	size_t nc = r->d->ncells;
 	lz_edmd_free(r->e);
 	lz_bigmem_free(r->cls);
 	free(r->near);
-	lz_bigmem_free(r->read);
-	lz_bigmem_free(r->load);
-	free(r->load0);
+	lz_bigmem_sparse_free(r->read, nc * sizeof *r->read);
+	lz_bigmem_sparse_free(r->load, nc * sizeof *r->load);
+	lz_bigmem_sparse_free(r->load0, nc * sizeof *r->load0);
 	lz_bigmem_free(r->role);
 	lz_bigmem_free(r->own);
 	lz_bigmem_free(r->ghost);
 	lz_bigmem_free(r->heard);
 	lz_bigmem_free(r->mark);
-	lz_bigmem_free(r->rmark);
+	lz_bigmem_sparse_free(r->rmark, nc * sizeof *r->rmark);
 	free(r->stamps);
 	free(r->wait);
 	free(r->wait0);
@@ -551,12 +619,18 @@ void lz_pedmd_free(lz_pedmd *r)
 	free(r->wlog);
 	free(r->clog);
 	free(r->former);
+	lz_bigmem_free(r->gid);
+	lz_bigmem_free(r->index);
 	free(r);
 }
 
 const lz_edmd *lz_pedmd_system(const lz_pedmd *r) { return r->e; }
 lz_pedmd_counts lz_pedmd_counters(const lz_pedmd *r) { return r->counts; }
-int lz_pedmd_role(const lz_pedmd *r, uint32_t i) { return r->role[i]; }
+int lz_pedmd_role(const lz_pedmd *r, uint32_t id)
+{
+	int64_t i = lz_pedmd_slot(r, id);
+	return i < 0 ? LZ_PEDMD_ABSENT : r->role[i];
+}
 
 const lz_pedmd_record *lz_pedmd_log(const lz_pedmd *r, size_t *n)
 {
@@ -665,7 +739,7 @@ int lz_pedmd_block_at(const lz_pedmd *r, uint32_t cell, double t)
 
 static int send_one(lz_pedmd *r, int to, uint32_t kind, uint32_t i, double t)
 {
-	lz_pedmd_message m = {t, i, kind, r->e->p[i], r->own[i]};
+	lz_pedmd_message m = lz_pedmd_outgoing(r, i, kind, t);
 	if (kind == LZ_PEDMD_MIGRATE)
 		m.event = (lz_pedmd_event){INFINITY, {LZ_EDMD_NONE, 0}};
 	r->woke = 1;
@@ -714,15 +788,18 @@ void lz_pedmd_note(lz_pedmd *r, double t, uint32_t i, uint32_t j, uint32_t kind,
 		r->nomem = 1;
 		return;
 	}
-	r->wlog[r->nwlog++] = (lz_pedmd_record){r->e->t_base + t, i < j ? i : j, i < j ? j : i,
-	                                        kind, r->e->p[i < j ? i : j].cell};
+	uint32_t a = lz_pedmd_id(r, i), b = lz_pedmd_id(r, j), first = a < b ? i : j;
+	r->wlog[r->nwlog++] = (lz_pedmd_record){r->e->t_base + t, a < b ? a : b, a < b ? b : a,
+	                                        kind, r->e->p[first].cell};
 }
 
 /* ---- the messages that wait ---- */
 
-static int wait_before(const lz_pedmd_message *a, const lz_pedmd_message *b)
+/* Waiting messages by time, then by particle number (not slot: the same order on
+ * every rank and in every run). */
+static int wait_before(const lz_pedmd *r, const lz_pedmd_message *a, const lz_pedmd_message *b)
 {
-	return a->t < b->t || (a->t == b->t && a->id < b->id);
+	return a->t < b->t || (a->t == b->t && lz_pedmd_id(r, a->id) < lz_pedmd_id(r, b->id));
 }
 
 int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m)
@@ -730,7 +807,7 @@ int lz_pedmd_wait(lz_pedmd *r, const lz_pedmd_message *m)
 	if (lz_pedmd_grow((void **)&r->wait, &r->capwait, r->nwait, sizeof *r->wait))
 		return LZ_ENOMEM;
 	size_t k = r->nwait++;
-	while (k > 0 && wait_before(m, &r->wait[(k - 1) / 2])) {
+	while (k > 0 && wait_before(r, m, &r->wait[(k - 1) / 2])) {
 		r->wait[k] = r->wait[(k - 1) / 2];
 		k = (k - 1) / 2;
 	}
@@ -746,9 +823,9 @@ static lz_pedmd_message wait_pop(lz_pedmd *r)
 		size_t c = 2 * k + 1;
 		if (c >= r->nwait)
 			break;
-		if (c + 1 < r->nwait && wait_before(&r->wait[c + 1], &r->wait[c]))
+		if (c + 1 < r->nwait && wait_before(r, &r->wait[c + 1], &r->wait[c]))
 			c++;
-		if (!wait_before(&r->wait[c], &last))
+		if (!wait_before(r, &r->wait[c], &last))
 			break;
 		r->wait[k] = r->wait[c];
 		k = c;
@@ -794,23 +871,24 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
 	return h;
 }
 
-/* A fingerprint of the rank: its owned particles (number, record, event) and the
- * window's events, these in any order (events at one time may run in either order: a
- * rollback puts particles back into the heap, and ties may then pop otherwise).
- * O(N + window). */
+/* A fingerprint of the rank: its owned particles (number, record, event as sent) and
+ * the window's events, each in any order (events at one time may run in either
+ * order: a rollback puts particles back into the heap, and ties may then pop
+ * otherwise; and a rerun may meet particles in another order, so give them other
+ * slots). O(slots + window). */
 static uint64_t fingerprint(const lz_pedmd *r)
 {
-	uint64_t h = 14695981039346656037u;
-	for (uint32_t i = 0; i < r->e->n; i++)
+	const uint64_t basis = 14695981039346656037u;
+	uint64_t owned = 0, events = 0;
+	for (uint32_t i = 0; i < r->nslots; i++)
 		if (r->role[i] == LZ_PEDMD_OWNED) {
-			h = fnv(h, &i, sizeof i);
-			h = fnv(h, &r->e->p[i], sizeof r->e->p[i]);
-			h = fnv(h, &r->own[i], sizeof r->own[i]);
+			lz_pedmd_message m = lz_pedmd_outgoing(r, i, LZ_PEDMD_MIGRATE, 0);
+			owned += fnv(fnv(fnv(basis, &m.id, sizeof m.id), &m.p, sizeof m.p), &m.event,
+			             sizeof m.event);
 		}
-	uint64_t events = 0;
 	for (size_t k = 0; k < r->nwlog; k++)
-		events += fnv(14695981039346656037u, &r->wlog[k], sizeof r->wlog[k]);
-	return fnv(h, &events, sizeof events);
+		events += fnv(basis, &r->wlog[k], sizeof r->wlog[k]);
+	return fnv(fnv(basis, &owned, sizeof owned), &events, sizeof events);
 }
 
 /* The earliest time anything happens next on this rank (absolute). */
@@ -884,6 +962,8 @@ static int receive(lz_pedmd *r)
 		}
 		if (r->t_error != INFINITY)
 			continue;
+		if ((st = lz_pedmd_incoming(r, &m)) != LZ_OK)  /* numbers to slots */
+			return st;
 		int late = m.t < r->clock;
 		if ((st = lz_pedmd_apply(r, &m)) != LZ_OK)
 			return st;
@@ -896,7 +976,8 @@ static int receive(lz_pedmd *r)
  * a window that will be rolled back (else each runs on to its end, all of it lost). */
 static int halt(lz_pedmd *r)
 {
-	lz_pedmd_message m = {r->t_error, 0, LZ_PEDMD_HALT, r->e->p[0], {INFINITY, {LZ_EDMD_NONE, 0}}};
+	lz_pedmd_message m = {.t = r->t_error, .kind = LZ_PEDMD_HALT,
+	                      .event = {INFINITY, {LZ_EDMD_NONE, 0}}};
 	int st = LZ_OK;
 	r->halted = 1;
 	r->woke = 1;
@@ -927,6 +1008,8 @@ static void fetch_ahead(const lz_pedmd *r)
 		__builtin_prefetch(&r->own[i]);
 		__builtin_prefetch(&r->ghost[i]);
 		__builtin_prefetch(&r->heard[i]);
+		if (r->gid)
+			__builtin_prefetch(&r->gid[i]);
 	}
 }
 
@@ -986,7 +1069,8 @@ static void rebase(lz_pedmd *r)
 	for (size_t k = 0; k < r->nwait; k++)
 		r->wait[k].t -= now;
 	for (size_t c = 0; c < e->ncells; c++)
-		r->read[c] -= now;
+		if (!r->gid || r->cls[c] != LZ_PEDMD_FAR)
+			r->read[c] -= now;
 	r->clock = 0;
 }
 
@@ -1150,49 +1234,64 @@ int lz_pedmd_work(lz_pedmd *r, double t_stop, lz_work *state)
 
 /* ---- the audit ---- */
 
-static int audit_owned(lz_pedmd *const *ranks, int P, uint32_t i, int *owner)
+/* Particle id on rank r: its role, and in *m its record and event as r would send them
+ * (numbers, not slots). */
+static int held_as(const lz_pedmd *r, uint32_t id, lz_pedmd_message *m)
+{
+	int64_t i = lz_pedmd_slot(r, id);
+	if (i < 0)
+		return LZ_PEDMD_ABSENT;
+	*m = lz_pedmd_outgoing(r, (uint32_t)i, LZ_PEDMD_STATE, 0);
+	if (r->role[i] == LZ_PEDMD_GHOST) {
+		m->event = r->ghost[i];
+		if (m->event.ev.partner >= 0)
+			m->event.ev.partner = (int32_t)lz_pedmd_id(r, (uint32_t)m->event.ev.partner);
+	}
+	return r->role[i];
+}
+
+static int audit_owned(lz_pedmd *const *ranks, int P, uint32_t id, int *owner,
+                       lz_pedmd_message *m)
 {
 	*owner = -1;
 	for (int k = 0; k < P; k++) {
 		const lz_pedmd *r = ranks[k];
-		if (r->role[i] != LZ_PEDMD_OWNED)
+		if (held_as(r, id, m) != LZ_PEDMD_OWNED)
 			continue;
 		if (*owner >= 0)
-			return lz_error(LZ_EDOM, "particle %u is owned by ranks %d and %d", i, *owner, k);
+			return lz_error(LZ_EDOM, "particle %u is owned by ranks %d and %d", id, *owner, k);
 		*owner = k;
-		uint32_t c = r->e->p[i].cell;
+		uint32_t c = m->p.cell;
 		if (lz_pedmd_owner(r->d, c) != k)
 			return lz_error(LZ_EDOM, "rank %d owns particle %u in cell %u, which rank %d owns",
-			                k, i, c, lz_pedmd_owner(r->d, c));
-		if (!lz_heap_contains(r->e->heap, i))
-			return lz_error(LZ_EDOM, "rank %d owns particle %u, which is not in its heap", k, i);
+			                k, id, c, lz_pedmd_owner(r->d, c));
+		if (!lz_heap_contains(r->e->heap, (uint32_t)lz_pedmd_slot(r, id)))
+			return lz_error(LZ_EDOM, "rank %d owns particle %u, which is not in its heap", k, id);
 	}
 	if (*owner < 0)
-		return lz_error(LZ_EDOM, "particle %u is owned by no rank", i);
+		return lz_error(LZ_EDOM, "particle %u is owned by no rank", id);
+	held_as(ranks[*owner], id, m);
 	return LZ_OK;
 }
 
 int lz_pedmd_audit(lz_pedmd *const *ranks, int P)
 {
-	size_t n = ranks[0]->e->n;
-	for (uint32_t i = 0; i < n; i++) {
+	for (uint32_t id = 0; id < ranks[0]->N; id++) {
 		int o;
-		if (audit_owned(ranks, P, i, &o))
+		lz_pedmd_message own, g;
+		if (audit_owned(ranks, P, id, &o, &own))
 			return LZ_EDOM;
-		const lz_pedmd *owner = ranks[o];
-		const lz_edmd_particle *p = &owner->e->p[i];
 		for (int k = 0; k < P; k++) {
 			const lz_pedmd *r = ranks[k];
-			int halo = r->cls[p->cell] == LZ_PEDMD_HALO;
-			if (k == o || (!halo && r->role[i] == LZ_PEDMD_ABSENT))
+			int halo = r->cls[own.p.cell] == LZ_PEDMD_HALO, role = held_as(r, id, &g);
+			if (k == o || (!halo && role == LZ_PEDMD_ABSENT))
 				continue;
-			if (halo != (r->role[i] == LZ_PEDMD_GHOST))
+			if (halo != (role == LZ_PEDMD_GHOST))
 				return lz_error(LZ_EDOM, "particle %u (rank %d's, cell %u) is %s on rank %d",
-				                i, o, p->cell, halo ? "missing as a ghost" : "a ghost out of the halo", k);
-			if (memcmp(&r->e->p[i], p, sizeof *p) ||
-			    memcmp(&r->ghost[i], &owner->own[i], sizeof owner->own[i]))
+				                id, o, own.p.cell, halo ? "missing as a ghost" : "a ghost out of the halo", k);
+			if (memcmp(&g.p, &own.p, sizeof own.p) || memcmp(&g.event, &own.event, sizeof own.event))
 				return lz_error(LZ_EDOM, "rank %d's ghost of particle %u differs from rank %d's "
-				                "record or event", k, i, o);
+				                "record or event", k, id, o);
 		}
 	}
 	return LZ_OK;

@@ -160,9 +160,9 @@ void lz_pedmd_sim_gather(const lz_pedmd_sim *x, lz_edmd *out)
 {
 	for (int k = 0; k < x->P; k++) {
 		const lz_pedmd *r = x->rank[k];
-		for (uint32_t i = 0; i < out->n; i++)
+		for (uint32_t i = 0; i < r->nslots; i++)
 			if (r->role[i] == LZ_PEDMD_OWNED)
-				out->p[i] = r->e->p[i];
+				out->p[lz_pedmd_id(r, i)] = r->e->p[i];
 	}
 }
 

@@ -148,7 +148,8 @@ int lz_pedmd_scene_make(const lz_scene *s, int quiet, lz_pedmd_scene *out)
 	int every = lz_scene_enum(s, "balance") == 2 ? (int)lz_scene_int(s, "balance_every") : 0;
 	out->params = (lz_pedmd_params){lz_scene_real(s, "window"), lz_scene_real(s, "rebase"),
 	                                every, 0.1, 0, (int)lz_scene_int(s, "work"),
-	                                lz_scene_bool(s, "recheck"), lz_scene_real(s, "grow")};
+	                                lz_scene_bool(s, "recheck"), lz_scene_real(s, "grow"),
+	                                1 /* local numbering: each rank holds its share */};
 	out->t_stop = lz_scene_real(s, "time");
 	out->check = out->reference != NULL;
 	return LZ_OK;

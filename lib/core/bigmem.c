@@ -3,6 +3,7 @@
 /* MADV_HUGEPAGE is a Linux extension, outside the X/Open set the build asks for */
 #define _DEFAULT_SOURCE
 #include <stdlib.h>
+#include <string.h>
 #include <sys/mman.h>
 
 #include "lz/bigmem.h"
@@ -22,3 +23,32 @@ void *lz_bigmem_alloc(size_t size)
 }
 
 void lz_bigmem_free(void *p) { free(p); }
+
+void *lz_bigmem_resize(void *p, size_t old, size_t size)
+{
+	void *q = lz_bigmem_alloc(size);
+	if (q && p)
+		memcpy(q, p, old < size ? old : size);
+	if (q)
+		free(p);
+	return q;
+}
+
+void *lz_bigmem_sparse(size_t size)
+{
+	void *p = mmap(NULL, size ? size : 1, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+	               -1, 0);
+	if (p == MAP_FAILED)
+		return NULL;
+#ifdef MADV_HUGEPAGE
+	if (size >= 2 * HUGE_PAGE)
+		madvise(p, size, MADV_HUGEPAGE);
+#endif
+	return p;
+}
+
+void lz_bigmem_sparse_free(void *p, size_t size)
+{
+	if (p)
+		munmap(p, size ? size : 1);
+}

@@ -179,7 +179,7 @@ static int collide(lz_pedmd *r, uint32_t i, uint32_t j, double t)
 	pi->count++;
 	pj->count++;
 	e->collisions++;
-	if (!ghost || i < j)
+	if (!ghost || lz_pedmd_id(r, i) < lz_pedmd_id(r, j))
 		lz_pedmd_note(r, t, i, j, LZ_PEDMD_COLLISION, w);
 	if ((st = lz_pedmd_predict(r, i)) || (st = tell(r, i, t)))
 		return st;
@@ -249,8 +249,10 @@ int lz_pedmd_step(lz_pedmd *r, int *did)
 	 * note it (LZ_PEDMD_STALE), predict i again with lz_pedmd_predict and tell i's
 	 * neighbours (lz_pedmd_announce). A collision: save both, bring them to t,
 	 * bounce along lz_edmd_separation, both counts + 1, note it once (if j is a
-	 * ghost, only when i < j), predict and announce i, and j too when it is owned (a
-	 * ghost's next event comes from its owner: forget the old one). A face: a wall
+	 * ghost, only when i's number is the smaller: lz_pedmd_id(r, i) < lz_pedmd_id(r,
+	 * j), as a slot need not be a particle's number), predict and announce i, and j
+	 * too when it is owned (a ghost's next event comes from its owner: forget the old
+	 * one). A face: a wall
 	 * bounce, or a crossing — into a cell this rank owns (predict, announce with
 	 * the old cell as `from`), or into another rank's: pop i from the heap, make it
 	 * a GHOST here (own[i].t = t: when it left) and announce with that rank as

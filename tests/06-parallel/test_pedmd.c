@@ -23,7 +23,7 @@
 #include "lz/rng.h"
 #include "lztest.h"
 
-static const lz_pedmd_params PARAMS = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
+static const lz_pedmd_params PARAMS = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125, 0};
 
 /* ---- systems ---- */
 
@@ -1124,7 +1124,9 @@ static lz_pedmd_counts check_run(const scene *sc, const char *what)
 	size_t nwant = serial_run(a, t_stop, PARAMS.rebase, want, cap);
 	qsort(want, nwant, sizeof *want, lz_pedmd_record_order);  /* ties at a large clock */
 	lz_stub_params sp = {sc->P, sc->policy, 606, 3, 0, 4, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, sc->kind, &sp, &PARAMS);
+	lz_pedmd_params pp = PARAMS;
+	pp.compact = 1;  /* local numbering, as lz-mpi runs: a slot is not a particle's number */
+	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, sc->kind, &sp, &pp);
 	LZ_REQUIRE(x, "%s: %s", what, lz_error_message());
 	x->audit = 1;
 	x->most = 40 * nwant + 10000;  /* the runs here process 1-5 events per committed one */

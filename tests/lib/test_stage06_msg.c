@@ -240,15 +240,17 @@ LZ_TEST(pedmd_refuses_bad_parameters_and_audits)
 {
 	lz_edmd *s = gas(2, 400, 0.3, 2);
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 1, 2, 0, 1, 1e-6, 1e-6, 1e-6};
-	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
+	lz_pedmd_params good = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125, 0};
 	lz_pedmd_params bad[] = {
-		{0, 0.5, 0, 0.1, 1, 16, 0, 1.125},    {INFINITY, 0.5, 0, 0.1, 1, 16, 0, 1.125},
-		{0.05, -1, 0, 0.1, 1, 16, 0, 1.125},  {0.05, 0.5, -1, 0.1, 1, 16, 0, 1.125},
-		{0.05, 0.5, 0, 1, 1, 16, 0, 1.125},   {0.05, 0.5, 0, 0.1, 1, 0, 0, 1.125},
-		{0.05, 0.5, 0, 0.1, 1, 16, 0, 1},     {0.05, 0.5, 0, 0.1, 1, 16, 0, NAN},
+		{0, 0.5, 0, 0.1, 1, 16, 0, 1.125, 0},    {INFINITY, 0.5, 0, 0.1, 1, 16, 0, 1.125, 0},
+		{0.05, -1, 0, 0.1, 1, 16, 0, 1.125, 0},  {0.05, 0.5, -1, 0.1, 1, 16, 0, 1.125, 0},
+		{0.05, 0.5, 0, 1, 1, 16, 0, 1.125, 0},   {0.05, 0.5, 0, 0.1, 1, 0, 0, 1.125, 0},
+		{0.05, 0.5, 0, 0.1, 1, 16, 0, 1, 0},     {0.05, 0.5, 0, 0.1, 1, 16, 0, NAN, 0},
+		{0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125, 2},
 	};
-	const char *says[] = {"window", "window", "rebase", "balance", "threshold", "work", "grow", "grow"};
-	for (int k = 0; k < 8; k++) {
+	const char *says[] = {"window", "window", "rebase", "balance", "threshold", "work", "grow",
+	                      "grow", "compact"};
+	for (int k = 0; k < 9; k++) {
 		ck_assert_msg(lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &bad[k]) == NULL &&
 		              lz_test_last_error() == LZ_EINVAL && strstr(lz_error_message(), says[k]),
 		              "bad parameters %d must be refused naming %s: %s", k, says[k],
@@ -332,30 +334,65 @@ static void owned_in_parts(const lz_pedmd *r, int k)
 	free(all);
 }
 
+/* Rank a in local numbering, made from start s: a slot for each particle of its
+ * cells and halo, with its record, and few others (their events' partners); its
+ * frame b (lz_pedmd_release) holds its owned records at their numbers. */
+static void check_share(const lz_pedmd *a, const lz_edmd *s, const lz_edmd *b, int k)
+{
+	size_t share = 0;
+	for (uint32_t id = 0; id < s->n; id++) {
+		int64_t i = lz_pedmd_slot(a, id);
+		int here = a->cls[s->p[id].cell] != LZ_PEDMD_FAR;
+		share += here;
+		LZ_REQUIRE(!here || (i >= 0 && lz_pedmd_id(a, (uint32_t)i) == id &&
+		           memcmp(&a->e->p[i], &s->p[id], sizeof s->p[id]) == 0),
+		           "rank %d: particle %u of its cells or halo has no slot, or another "
+		           "record", k, id);
+		LZ_REQUIRE(here == (lz_pedmd_role(a, id) != LZ_PEDMD_ABSENT), "rank %d: particle "
+		           "%u's role %d", k, id, lz_pedmd_role(a, id));
+		LZ_REQUIRE(lz_pedmd_owner(a->d, s->p[id].cell) != k ||
+		           memcmp(&b->p[id], &s->p[id], sizeof s->p[id]) == 0, "rank %d: owned "
+		           "particle %u is not in the released frame at its number", k, id);
+	}
+	LZ_REQUIRE(share <= a->nslots && a->nslots < 2 * share && a->nslots < s->n,
+	           "rank %d: %zu slots for a share of %zu of %zu particles", k, a->nslots,
+	           share, s->n);
+	LZ_REQUIRE(lz_pedmd_slot(a, (uint32_t)s->n) < 0, "rank %d: a number beyond N has a slot", k);
+}
+
 LZ_TEST(pedmd_adopt_takes_the_system_as_alloc_copies_it)
 {
 	/* lz-mpi's ranks take the start itself (one system a process): each must be the
-	 * rank lz_pedmd_alloc makes from a copy, the cell lists in the same order */
+	 * rank lz_pedmd_alloc makes from a copy, the cell lists in the same order; with a
+	 * slot for every particle the start becomes the rank's system, in local numbering
+	 * the rank keeps its share and frees the start */
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 1, 2, 0, 1, 1e-6, 1e-6, 1e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125, 0};
 	lz_edmd *s = gas(3, 2000, 0.3, 5);
 	lz_stub *stub = lz_stub_alloc(&sp);
 	lz_pedmd_domains *d = lz_pedmd_domains_alloc(s, 3, LZ_PEDMD_MORTON);
 	LZ_REQUIRE_TRUE(stub && d && lz_edmd_run(s, 3000, INFINITY) == LZ_OK);
-	for (int k = 0; k < 3; k++) {
-		lz_edmd *t = gas(3, 2000, 0.3, 5);
-		LZ_REQUIRE_TRUE(lz_edmd_run(t, 3000, INFINITY) == LZ_OK);
-		lz_pedmd *a = lz_pedmd_alloc(s, d, lz_stub_rank(stub, k), &pp);
-		lz_pedmd *b = lz_pedmd_adopt(t, d, lz_stub_rank(stub, k), &pp);
-		LZ_REQUIRE(a && b, "rank %d: %s", k, lz_error_message());
-		LZ_REQUIRE(lz_pedmd_system(b) == t, "rank %d: lz_pedmd_adopt made a copy", k);
-		same_rank(a, b, k);
-		owned_in_parts(a, k);
-		lz_pedmd_free(a);
-		lz_edmd *back = lz_pedmd_release(b);
-		LZ_REQUIRE(back == t, "rank %d: lz_pedmd_release gave back another system", k);
-		lz_edmd_free(back);
-	}
+	for (pp.compact = 0; pp.compact <= 1; pp.compact++)
+		for (int k = 0; k < 3; k++) {
+			lz_edmd *t = gas(3, 2000, 0.3, 5);
+			LZ_REQUIRE_TRUE(lz_edmd_run(t, 3000, INFINITY) == LZ_OK);
+			lz_pedmd *a = lz_pedmd_alloc(s, d, lz_stub_rank(stub, k), &pp);
+			lz_pedmd *b = lz_pedmd_adopt(t, d, lz_stub_rank(stub, k), &pp);
+			LZ_REQUIRE(a && b, "rank %d: %s", k, lz_error_message());
+			LZ_REQUIRE(pp.compact || lz_pedmd_system(b) == t, "rank %d: lz_pedmd_adopt made a "
+			           "copy", k);
+			same_rank(a, b, k);
+			owned_in_parts(a, k);
+			lz_edmd *back = lz_pedmd_release(b);
+			LZ_REQUIRE(pp.compact || back == t, "rank %d: lz_pedmd_release gave back another "
+			           "system", k);
+			LZ_REQUIRE(back && back->n == s->n, "rank %d: the released frame", k);
+			if (pp.compact)
+				check_share(a, s, back, k);
+			lz_pedmd_free(a);
+			lz_edmd_free(back);
+		}
+	pp.compact = 0;
 	/* a system with lists cannot be a rank's: refused, and freed */
 	lz_edmd_params q = {3, 500, 0.3, 1, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_LIST, 0, 0};
 	lz_edmd *l = lz_edmd_alloc(&q);
@@ -398,11 +435,96 @@ static lz_edmd *sediment(size_t n)
 	return e;
 }
 
+/* Runs a (a slot for every particle) and b (local numbering) of one start on the same
+ * stub: the same run, operation by operation — every counter, every message, every
+ * record at the end (gathered into pa and pb) —, and b's ranks hold fewer slots than
+ * the N particles. */
+static void same_run(lz_pedmd_sim *a, lz_pedmd_sim *b, lz_edmd *pa, lz_edmd *pb,
+                     double t_stop, const char *what)
+{
+	ck_assert_msg(lz_pedmd_sim_run(a, t_stop) == LZ_OK, "%s, a slot a particle: %s", what,
+	              lz_error_message());
+	ck_assert_msg(lz_pedmd_sim_run(b, t_stop) == LZ_OK, "%s, local numbering: %s", what,
+	              lz_error_message());
+	lz_pedmd_counts ca = lz_pedmd_sim_counts(a), cb = lz_pedmd_sim_counts(b);
+	LZ_REQUIRE(memcmp(&ca, &cb, sizeof ca) == 0, "%s: the counters differ with local "
+	           "numbering (%llu / %llu processed, %llu / %llu rollbacks)", what,
+	           (unsigned long long)ca.processed, (unsigned long long)cb.processed,
+	           (unsigned long long)ca.rollbacks, (unsigned long long)cb.rollbacks);
+	for (int k = 0; k < a->P; k++) {
+		lz_msg_counts ma = lz_msg_counters(lz_stub_rank(a->stub, k)),
+		              mb = lz_msg_counters(lz_stub_rank(b->stub, k));
+		LZ_REQUIRE(ma.sent == mb.sent && ma.received == mb.received, "%s: rank %d sent %llu "
+		           "messages, %llu with local numbering", what, k, (unsigned long long)ma.sent,
+		           (unsigned long long)mb.sent);
+		LZ_REQUIRE(b->rank[k]->nslots < pa->n, "%s: rank %d holds %zu slots for %zu "
+		           "particles", what, k, b->rank[k]->nslots, pa->n);
+	}
+	lz_pedmd_sim_gather(a, pa);
+	lz_pedmd_sim_gather(b, pb);
+	for (uint32_t i = 0; i < pa->n; i++)
+		LZ_REQUIRE(memcmp(&pa->p[i], &pb->p[i], sizeof pa->p[i]) == 0, "%s: particle %u ends "
+		           "elsewhere with local numbering", what, i);
+}
+
+LZ_TEST(pedmd_local_numbering_is_the_same_run)
+{
+	/* a rank that holds only what it has heard of, in slots of its own, runs what a
+	 * rank with a slot for every particle runs: 2D and 3D, slabs and Morton, P = 2 to
+	 * 8, every schedule, walls with gravity and loss, moving cuts and the rollback
+	 * check; and both are the serial run */
+	struct {
+		int dim;
+		size_t n;
+		int P, kind, balance, recheck;
+		lz_stub_policy policy;
+	} runs[] = {
+		{2, 900, 2, LZ_PEDMD_ROWS, 0, 0, LZ_STUB_ROUND_ROBIN},
+		{2, 900, 3, LZ_PEDMD_MORTON, 0, 0, LZ_STUB_RANDOM},
+		{2, 900, 4, LZ_PEDMD_ROWS, 0, 1, LZ_STUB_AHEAD},
+		{3, 1500, 8, LZ_PEDMD_MORTON, 0, 0, LZ_STUB_VIRTUAL},
+		{3, 1500, 4, LZ_PEDMD_ROWS, 0, 0, LZ_STUB_RANDOM},
+		{0, 800, 4, LZ_PEDMD_MORTON, 3, 0, LZ_STUB_VIRTUAL},  /* 0: the sediment */
+		{0, 800, 3, LZ_PEDMD_ROWS, 2, 0, LZ_STUB_RANDOM},
+	};
+	for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+		char what[120];
+		snprintf(what, sizeof what, "%s, N = %zu, P = %d, %s, policy %d%s%s",
+		         runs[k].dim ? (runs[k].dim == 3 ? "3D gas" : "2D gas") : "sediment",
+		         runs[k].n, runs[k].P, runs[k].kind == LZ_PEDMD_ROWS ? "rows" : "Morton",
+		         runs[k].policy, runs[k].balance ? ", moving cuts" : "",
+		         runs[k].recheck ? ", rechecked" : "");
+		lz_edmd *e[4];
+		for (int q = 0; q < 4; q++)
+			e[q] = runs[k].dim ? gas(runs[k].dim, runs[k].n, 0.35, 13) : sediment(runs[k].n);
+		lz_stub_params sp = {runs[k].P, runs[k].policy, 21, 3, 0, 4, 1e-6, 2e-6, 5e-6};
+		lz_pedmd_params pp = {0.05, 0.5, runs[k].balance, 0.02, 0, 16, runs[k].recheck, 1.125, 0};
+		lz_pedmd_sim *a = lz_pedmd_sim_alloc(e[0], runs[k].kind, &sp, &pp);
+		pp.compact = 1;
+		lz_pedmd_sim *b = lz_pedmd_sim_alloc(e[1], runs[k].kind, &sp, &pp);
+		LZ_REQUIRE(a && b, "%s: %s", what, lz_error_message());
+		a->audit = b->audit = 1;  /* holding the ranks at a cut changes the schedule: both */
+		double t = runs[k].dim ? 0.6 : 2.0;
+		same_run(a, b, e[0], e[1], t, what);
+		ck_assert_int_eq(lz_pedmd_serial(e[2], t, 0.5), LZ_OK);
+		for (uint32_t i = 0; i < e[2]->n; i++)
+			LZ_REQUIRE(memcmp(&e[1]->p[i], &e[2]->p[i], sizeof e[2]->p[i]) == 0, "%s: particle "
+			           "%u ends elsewhere than serially", what, i);
+		LZ_REQUIRE(!runs[k].balance || lz_pedmd_sim_counts(b).balances > 0, "%s: the cuts never "
+		           "moved", what);
+		lz_pedmd_sim_free(a);
+		lz_pedmd_sim_free(b);
+		for (int q = 0; q < 4; q++)
+			lz_edmd_free(e[q]);
+	}
+}
+END_TEST
+
 LZ_TEST(pedmd_cuts_from_a_pilot_run_spread_the_work)
 {
 	lz_edmd *s = sediment(800), *t = sediment(800);
 	lz_stub_params sp = {4, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 1, 16, 0, 1.125, 0};
 	lz_pedmd_sim *pilot = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 	ck_assert_ptr_nonnull(pilot);
 	ck_assert_int_eq(lz_pedmd_sim_run(pilot, 1.0), LZ_OK);
@@ -458,7 +580,7 @@ LZ_TEST(pedmd_cuts_move_during_a_run)
 	 * windows when that pays, and the run stays the serial run, bit for bit */
 	lz_edmd *s = sediment(800), *ref = sediment(800), *pic = sediment(800);
 	lz_stub_params sp = {4, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 4, 0.05, 0, 16, 0, 1.125};
+	lz_pedmd_params pp = {0.05, 0.5, 4, 0.05, 0, 16, 0, 1.125, 1};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 	ck_assert_ptr_nonnull(x);
 	x->audit = 1;
@@ -494,7 +616,7 @@ LZ_TEST(pedmd_take_hands_over_the_picture_and_refuses_a_broken_one)
 	 * taking it in place is left as its twin in a second, identical run (y) */
 	lz_edmd *s = gas(2, 600, 0.35, 5), *ref = gas(2, 600, 0.35, 5), *t = gas(2, 600, 0.35, 5);
 	lz_stub_params sp = {3, LZ_STUB_ROUND_ROBIN, 2, 2, 0, 4, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, 1.125};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, 1.125, 0};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_ROWS, &sp, &pp);
 	lz_pedmd_sim *y = lz_pedmd_sim_alloc(t, LZ_PEDMD_ROWS, &sp, &pp);
 	LZ_REQUIRE_TRUE(x && y);
@@ -561,7 +683,7 @@ LZ_TEST(pedmd_take_in_shares_hands_over_what_each_rank_holds)
 	 * serial run, bit for bit */
 	lz_edmd *s = sediment(800), *ref = sediment(800);
 	lz_stub_params sp = {3, LZ_STUB_VIRTUAL, 1, 0, 0, 1, 1e-6, 2e-6, 5e-6};
-	lz_pedmd_params pp = {0.05, 0.5, 0, 0.05, 0, 16, 0, 1.125};
+	lz_pedmd_params pp = {0.05, 0.5, 0, 0.05, 0, 16, 0, 1.125, 1};
 	lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 	ck_assert_ptr_nonnull(x);
 	ck_assert_int_eq(lz_pedmd_sim_run(x, 1.0), LZ_OK);
@@ -588,13 +710,19 @@ LZ_TEST(pedmd_take_in_shares_hands_over_what_each_rank_holds)
 	ck_assert_int_eq(lz_pedmd_take_part(x->rank[to[0]], &part[0], 1), LZ_EINVAL);
 	ck_assert_msg(strstr(lz_error_message(), "twice") != NULL, "says: %s", lz_error_message());
 	for (int k = 0; k < 3; k++) {
-		lz_pedmd_take_end(x->rank[k]);
+		ck_assert_int_eq(lz_pedmd_take_end(x->rank[k]), LZ_OK);
 		const lz_edmd *e = x->rank[k]->e;
 		for (uint32_t i = 0; i < e->n; i++)
 			LZ_REQUIRE(x->rank[k]->role[i] != LZ_PEDMD_ABSENT ||
 			           e->p[i].count == LZ_PEDMD_UNKNOWN, "rank %d keeps particle %u's old "
 			           "record (count %u): an event aimed at it could pass for a live one",
 			           k, i, e->p[i].count);
+		const lz_pedmd *r = x->rank[k];  /* each cell's list by number, not by slot */
+		for (uint32_t c = 0; c < e->ncells; c++)
+			for (int32_t i = e->list[c].head; i >= 0 && e->next[i] >= 0; i = e->next[i])
+				LZ_REQUIRE(lz_pedmd_id(r, (uint32_t)i) < lz_pedmd_id(r, (uint32_t)e->next[i]),
+				           "rank %d: cell %u lists particle %u before %u, not by number", k, c,
+				           lz_pedmd_id(r, (uint32_t)i), lz_pedmd_id(r, (uint32_t)e->next[i]));
 	}
 	ck_assert_msg(lz_pedmd_audit(x->rank, 3) == LZ_OK, "after the hand-over: %s",
 	              lz_error_message());
@@ -623,7 +751,7 @@ LZ_TEST(pedmd_rollback_check_reruns_every_window_alike)
 			lz_edmd *s = gas(2, 600, 0.35, 7), *ref = gas(2, 600, 0.35, 7);
 			ck_assert_int_eq(lz_pedmd_serial(ref, 1.0, 0.5), LZ_OK);
 			lz_stub_params sp = {P, (lz_stub_policy)policy, 9, 3, 0, 4, 1e-6, 2e-6, 5e-6};
-			lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 1, 1.125};
+			lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 1, 1.125, 1};
 			lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 			ck_assert_ptr_nonnull(x);
 			int st = lz_pedmd_sim_run(x, 1.0);
@@ -662,7 +790,7 @@ LZ_TEST(pedmd_slow_growth_rolls_back_fewer_windows_and_keeps_the_serial_run)
 	for (int k = 0; k < 2; k++) {
 		lz_edmd *s = gas(2, 3000, 0.35, 11);
 		lz_stub_params sp = {4, LZ_STUB_RANDOM, 3, 3, 0, 4, 1e-6, 2e-6, 5e-6};
-		lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, grow[k]};
+		lz_pedmd_params pp = {0.05, 0.5, 0, 0.1, 0, 16, 0, grow[k], 0};
 		lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, LZ_PEDMD_MORTON, &sp, &pp);
 		ck_assert_ptr_nonnull(x);
 		ck_assert_msg(lz_pedmd_sim_run(x, 2.0) == LZ_OK, "grow %g: %s", grow[k],

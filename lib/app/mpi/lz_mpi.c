@@ -35,6 +35,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <mpi.h>
 
@@ -212,12 +213,13 @@ static int file_round(lz_edmd *out, uint8_t *seen, const lz_pedmd_message *part,
 
 /* The owned particles of every rank written on rank 0 into the system of its rank,
  * which then ends (lz_pedmd_release; its cells are not updated): the serial picture,
- * as lz_pedmd_sim_gather, in x->p.system on every rank. Rank 0's own particles are
+ * as lz_pedmd_sim_gather, in x->p.system on rank 0 (the others free their ranks and
+ * keep no picture). Rank 0's own particles are
  * there already; the others' come in rounds of GATHER_ROUND / size from each rank.
  * LZ_OK, or an error on rank 0 when a particle came never or twice. Collective. */
 static int gather(lz_mpi_run *x, int rank, int size)
 {
-	size_t N = lz_pedmd_system(x->r)->n, chunk = GATHER_ROUND / (size_t)size, got = 0;
+	size_t N = lz_pedmd_particles(x->r), chunk = GATHER_ROUND / (size_t)size, got = 0;
 	uint8_t *seen = rank == 0 ? calloc(N, 1) : NULL;
 	lz_pedmd_message *part = malloc((rank == 0 ? (size_t)size : 1) * chunk * sizeof *part);
 	int *count = malloc(2 * (size_t)size * sizeof *count);
@@ -236,6 +238,8 @@ static int gather(lz_mpi_run *x, int rank, int size)
 	int st = LZ_OK, *at = count + size;
 	uint32_t from = 0;
 	lz_edmd *out = rank == 0 ? lz_pedmd_release(x->r) : NULL;  /* its own are in place */
+	if (rank == 0 && !out)
+		abort_run(rank, LZ_ENOMEM);
 	for (int k = 0; k < rounds; k++) {
 		int n = rank == 0 ? 0 : (int)lz_pedmd_owned_part(x->r, &from, part, chunk);
 		MPI_Gather(&n, 1, MPI_INT, count, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -249,7 +253,9 @@ static int gather(lz_mpi_run *x, int rank, int size)
 	MPI_Type_free(&type);
 	if (rank == 0 && st == LZ_OK && got != N)
 		st = lz_error(LZ_EDOM, "the ranks own %zu of the %zu particles", got, N);
-	x->p.system = rank == 0 ? out : lz_pedmd_release(x->r);
+	if (rank != 0)
+		lz_pedmd_free(x->r);
+	x->p.system = out;  /* rank 0's picture; the others keep none */
 	x->r = NULL;
 	free(part);
 	free(count);
@@ -316,7 +322,7 @@ static int share_round(lz_pedmd *r, const lz_pedmd_domains *d, int size, size_t 
  * ranks must own N together. LZ_OK or an error. Collective. */
 static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
 {
-	size_t N = lz_pedmd_system(r)->n, chunk = GATHER_ROUND / (size_t)size, from = 0;
+	size_t N = lz_pedmd_particles(r), chunk = GATHER_ROUND / (size_t)size, from = 0;
 	int need = (int)((lz_pedmd_owned(r, NULL) + chunk - 1) / chunk), rounds;
 	MPI_Allreduce(&need, &rounds, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
 	shares b = {.part = malloc(chunk * sizeof *b.part),
@@ -340,7 +346,8 @@ static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
 	free(b.count);
 	if (st != LZ_OK)
 		return st;
-	lz_pedmd_take_end(r);
+	if ((st = lz_pedmd_take_end(r)) != LZ_OK)
+		return st;
 	unsigned long long owned = lz_pedmd_owned(r, NULL), sum;
 	MPI_Allreduce(&owned, &sum, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
 	if (sum != N)
@@ -424,19 +431,26 @@ static probe_result probe(lz_msg *msg, int rank, int size)
 	return res;
 }
 
-/* The largest peak resident memory of the processes, in MiB (getrusage: kB on Linux),
- * on rank 0. Collective. */
-static double peak_mib(void)
+/* The largest of the processes' memory, in MiB, on rank 0: their peak resident size
+ * (getrusage: kB on Linux; set-up included), or (now = 1) what each holds now
+ * (/proc/self/statm: resident pages; 0 where that file is not). Collective. */
+static double memory_mib(int now)
 {
 	struct rusage u;
-	double mine = getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024 : 0, most = mine;
+	unsigned long pages = 0, resident = 0;
+	double mine = !now && getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024 : 0, most;
+	FILE *f = now ? fopen("/proc/self/statm", "r") : NULL;
+	if (f && fscanf(f, "%lu %lu", &pages, &resident) == 2)
+		mine = (double)resident * (double)sysconf(_SC_PAGESIZE) / 1048576;
+	if (f)
+		fclose(f);
 	MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
 	return most;
 }
 
 static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
                    const lz_pedmd_counts *c, double wall, probe_result cost, double pilot,
-                   double peak)
+                   double peak, double held)
 {
 	const lz_edmd *e = p->system;
 	printf("lz-mpi: scene %s, %zu %s, %d ranks along the %s curve\n", lz_scene_name(s), e->n,
@@ -460,6 +474,8 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
 	printf("peak memory           %.1f MiB a process (the largest; %.0f bytes a particle)\n",
 	       peak, peak * 1048576 / (double)e->n);
+	printf("memory in the run     %.1f MiB a process (resident at the run's end, the largest; "
+	       "%.0f bytes a particle)\n", held, held * 1048576 / (double)e->n);
 	if (size > 1)
 		printf("message cost          %.3g s (send or receive; %d ping-pongs of ranks 0, 1)\n"
 		       "message latency       %.3g s\n", cost.cost, PROBE_PINGS, cost.latency);
@@ -536,13 +552,14 @@ int main(int argc, char **argv)
 	}
 	double wall = MPI_Wtime() - t0, slowest = wall;
 	MPI_Reduce(&wall, &slowest, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+	double held = memory_mib(1);  /* before the picture is gathered */
 
 	/* The results, on rank 0. */
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
 	st = gather(&x, rank, size);
-	double peak = peak_mib();  /* check = yes: the serial reference is in it too */
+	double peak = memory_mib(0);  /* check = yes: the serial reference is in it too */
 	if (rank == 0 && st == LZ_OK)
-		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio, peak);
+		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio, peak, held);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {
 		size_t k = lz_pedmd_scene_differ(x.p.system, x.p.reference);
 		if (k == 0)

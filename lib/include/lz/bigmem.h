@@ -20,4 +20,17 @@
 void *lz_bigmem_alloc(size_t size);
 void lz_bigmem_free(void *p);
 
+/* size bytes of zeros in pages of their own (an anonymous mapping; huge pages advised
+ * from 4 MB up): a page takes memory only once a byte of it is written, so a process
+ * that writes a part of the array holds that part — a rank's share of the cells
+ * (lz/pedmd.h). NULL when out of address space. Free with lz_bigmem_sparse_free and
+ * the same size. O(1). */
+void *lz_bigmem_sparse(size_t size);
+void lz_bigmem_sparse_free(void *p, size_t size);
+
+/* A block of `size` bytes (as lz_bigmem_alloc) holding the first min(old, size) bytes
+ * of p, which it replaces (p freed); NULL when out of memory, and then p is kept as it
+ * was. O(size). */
+void *lz_bigmem_resize(void *p, size_t old, size_t size);
+
 #endif

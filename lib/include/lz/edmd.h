@@ -145,7 +145,9 @@ typedef struct {
 	int m[3];               /* cells per side (m[2] = 1 in 2D); >= 3 when periodic */
 	double w[3];            /* cell side L / m[a] (>= σ) */
 	size_t ncells;          /* m[0]·m[1]·m[2] <= LZ_EDMD_CELLS_MAX */
-	lz_edmd_list *list;     /* list[c]: the head of cell c's list of particles */
+	lz_edmd_list *list;     /* list[c]: the head of cell c's list of particles (in
+	                           pages that take memory where written, lz_bigmem_sparse:
+	                           a rank of lz/pedmd.h writes only the cells it holds) */
 	int32_t *next;          /* next particle in the same cell, -1 at the end; and
 	                           next[-1] = -1, a sentinel: the successor of "no
 	                           particle" is "no particle", so a loop may read it */
@@ -342,6 +344,14 @@ int lz_edmd_auto_cells(int dim, size_t n, double L);
  * Particles are not placed yet. NULL with lz_error on failure. O(n + cells). */
 lz_edmd *lz_edmd_alloc(const lz_edmd_params *p);
 void lz_edmd_free(lz_edmd *e);
+
+/* Room for n particles (n >= e->n; cells and a heap, not lists or a calendar): e->n
+ * becomes n, the particles already there keep their records, events, cells and keys;
+ * the new ones are zero records in no cell and not in the heap, their events NONE;
+ * e->prefetch as lz_edmd_alloc sets it for n.
+ * For a system that meets more particles as it runs (a rank of lz/pedmd.h). LZ_OK, or
+ * LZ_EINVAL / LZ_ENOMEM with e unchanged but for arrays already grown. O(n). */
+int lz_edmd_grow(lz_edmd *e, size_t n);
 
 /* Place the particles on a simple cubic (square in 2D) lattice — or fcc in 3D when
  * the simple cubic one would be closer than σ — shifted by a random vector along the
