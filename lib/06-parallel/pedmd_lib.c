@@ -280,7 +280,9 @@ static int take_system(lz_pedmd *r, const lz_edmd *s)
 		uint8_t k = r->cls[s->p[id].cell];
 		if (k == LZ_PEDMD_FAR && r->gid)
 			continue;
-		lz_pedmd_message m = {0, id, LZ_PEDMD_MIGRATE, s->p[id], {lz_heap_key(s->heap, id), s->ev[id]}};
+		lz_pedmd_message m;
+		uint32_t from = id;
+		lz_pedmd_start_part(s, &from, &m, 1);
 		if ((st = lz_pedmd_incoming(r, &m)) == LZ_OK) {  /* slots for it and its partner */
 			r->e->p[m.id] = m.p;
 			r->e->ev[m.id] = m.event.ev;
@@ -304,7 +306,8 @@ static void *zeroed(size_t size)
 }
 
 /* A rank whose own system is e (copy_system of s, or s itself), its share of s
- * taken, in slots of its own when `compact`; e is freed on failure. */
+ * taken, in slots of its own when `compact` — or, when s has no particles' arrays (a
+ * shape: lz_pedmd_open), nothing taken yet; e is freed on failure. */
 static lz_pedmd *rank_of(lz_edmd *e, const lz_edmd *s, const lz_pedmd_domains *d,
                          lz_msg *msg, const lz_pedmd_params *p, int compact)
 {
@@ -340,7 +343,15 @@ static lz_pedmd *rank_of(lz_edmd *e, const lz_edmd *s, const lz_pedmd_domains *d
 		lz_pedmd_free(r);
 		return lz_error(LZ_ENOMEM, "no memory for a rank of %zu particles", n), NULL;
 	}
-	if ((compact && lz_pedmd_slots_init(r) != LZ_OK) || take_system(r, s) != LZ_OK) {
+	if (compact && lz_pedmd_slots_init(r) != LZ_OK) {
+		lz_pedmd_free(r);
+		return NULL;
+	}
+	if (!s->p) {  /* a shape: the cells empty, the particles to come (lz_pedmd_take) */
+		classify_cells(r);
+		clear_cells(r);
+		r->clock = e->now;
+	} else if (take_system(r, s) != LZ_OK) {
 		lz_pedmd_free(r);
 		return NULL;
 	}
@@ -390,6 +401,25 @@ lz_pedmd *lz_pedmd_adopt(lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
 	lz_pedmd *r = rank_of(copy_system(s, 1), s, d, msg, p, 1);
 	lz_edmd_free(s);  /* the rank holds its share: the whole is not kept */
 	return r;
+}
+
+lz_pedmd *lz_pedmd_open(const lz_edmd *shape, const lz_pedmd_domains *d, lz_msg *msg,
+                        const lz_pedmd_params *p)
+{
+	if (check_rank(shape, d, msg, p))
+		return NULL;
+	if (!p->compact)
+		return lz_error(LZ_EINVAL, "a rank opened empty holds its particles in local "
+		                "numbering: compact = 1"), NULL;
+	lz_edmd bare = *shape;  /* its box, cells and clock; none of its arrays */
+	bare.list = NULL;
+	bare.next = NULL;
+	bare.p = NULL;
+	bare.ev = NULL;
+	bare.heap = NULL;
+	bare.cal = NULL;
+	bare.lists = NULL;
+	return rank_of(copy_system(&bare, 1), &bare, d, msg, p, 1);
 }
 
 lz_edmd *lz_pedmd_release(lz_pedmd *r)
@@ -448,6 +478,18 @@ size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *
 			k++;
 		}
 	*from = i;
+	return k;
+}
+
+size_t lz_pedmd_start_part(const lz_edmd *s, uint32_t *from, lz_pedmd_message *out,
+                           size_t most)
+{
+	size_t k = 0;
+	for (; *from < s->n && k < most; k++, ++*from) {
+		uint32_t i = *from;
+		out[k] = (lz_pedmd_message){s->now, i, LZ_PEDMD_MIGRATE, s->p[i],
+		                            {lz_heap_key(s->heap, i), s->ev[i]}};
+	}
 	return k;
 }
 
@@ -551,7 +593,7 @@ int lz_pedmd_take_end(lz_pedmd *r)
 			lz_edmd_cell_insert(e, order[k], e->p[order[k]].cell);
 	free(order);
 	r->nformer = 0;
-	r->counts.balances++;
+	r->counts.balances += r->counts.windows > 0;  /* before any window: the set-up */
 	return fill_heap(r);
 }
 

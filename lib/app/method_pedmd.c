@@ -132,11 +132,12 @@ static lz_edmd *scene_system(const lz_scene *s, int quiet, int *status)
 	return e;
 }
 
-int lz_pedmd_scene_make(const lz_scene *s, int quiet, lz_pedmd_scene *out)
+int lz_pedmd_scene_make(const lz_scene *s, int quiet, int build, lz_pedmd_scene *out)
 {
-	int status;
+	int status = LZ_OK;
 	memset(out, 0, sizeof *out);
-	out->system = scene_system(s, quiet, &status);
+	if (build)
+		out->system = scene_system(s, quiet, &status);
 	if (out->system && lz_scene_bool(s, "check"))
 		out->reference = scene_system(s, 1, &status);
 	if (status != LZ_OK) {
@@ -297,7 +298,7 @@ static void summarise(const lz_pedmd_scene *p, const lz_pedmd_sim *x, double wal
 static int run(const lz_scene *s, lz_run *run)
 {
 	lz_pedmd_scene p;
-	int st = lz_pedmd_scene_make(s, run->quiet, &p);
+	int st = lz_pedmd_scene_make(s, run->quiet, 1, &p);
 	if (st != LZ_OK)
 		return st;
 	lz_edmd_scene_warn_phase(p.system, lz_scene_real(s, "packing"), run->quiet);

@@ -20,9 +20,10 @@ typedef struct {
 	int check;                /* 1: compare with the serial run */
 } lz_pedmd_scene;
 
-/* The run of bound scene s (method pedmd). LZ_OK, or an error at the key to blame.
- * O(n log n + equilibration). */
-int lz_pedmd_scene_make(const lz_scene *s, int quiet, lz_pedmd_scene *out);
+/* The run of bound scene s (method pedmd); build = 0: all of it but the systems (a
+ * process that takes its share from another, lz-mpi). LZ_OK, or an error at the key to
+ * blame. O(n log n + equilibration). */
+int lz_pedmd_scene_make(const lz_scene *s, int quiet, int build, lz_pedmd_scene *out);
 void lz_pedmd_scene_free(lz_pedmd_scene *p);
 
 /* balance = pilot: the cuts cut[0 .. P] from the committed events of a first run of

@@ -19,6 +19,11 @@
 # and latency the medians of what the P = 2 runs' ping-pong found (lz-mpi prints them)
 # — and its modelled P = 2 / serial = committed events x the serial engine's time per
 # event / the virtual time.
+#
+# Last, memory (Miller and Luding's fig. 9): what a process holds in the run (resident
+# at its end) and at its peak, on 1, 2 and 4 processes, 10^6 disks — rank 0, which
+# builds the start, and the largest of the others. Four processes may share fewer
+# cores (Open MPI's --oversubscribe): these runs measure memory, not speed.
 # shellcheck source=lib/tools/common.sh
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$ROOT"
@@ -36,19 +41,22 @@ if ! command -v mpirun >/dev/null 2>&1 || [ ! -x "$lzmpi" ]; then
 	exit 0
 fi
 MPIRUN=(mpirun)
+SHARE=()  # more processes than cores
 if mpirun --version 2>&1 | grep -q "Open MPI"; then
 	[ "$(id -u)" -ne 0 ] || MPIRUN+=(--allow-run-as-root)
+	SHARE=(--oversubscribe)
 fi
 cores=$(nproc 2>/dev/null || echo 1)
 
 # One lz-mpi run on $1 processes with the overrides that follow: committed events/s,
-# the largest peak memory of a process (MiB), and on 2 or more processes the measured
-# message cost and latency (seconds).
+# the largest memory a process holds in the run (MiB, resident at its end), and on 2 or
+# more processes the measured message cost and latency (seconds).
 mpi_rate() {
 	local np=$1
 	shift
 	"${MPIRUN[@]}" -np "$np" "$lzmpi" "$scene" check=no "$@" 2>/dev/null |
-		awk '/committed events\/s/ {r = $3} /^peak memory/ {m = $3} /^message cost/ {c = $3}
+		awk '/committed events\/s/ {r = $3} /^run memory  / {m = $3}
+		     /^run memory, others/ {if ($4 > m) m = $4} /^message cost/ {c = $3}
 		     /^message latency/ {l = $3} END {print r, m, c, l}'
 }
 
@@ -85,15 +93,15 @@ printf '{\n  "scene": "%s",\n  "cpu": "%s",\n  "cores": %s,\n  "repeats": %s,\n 
 	"$scene" "$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | sed 's/.*: *//')" "$cores" \
 	"$repeats" >"$json"
 sep=""
-printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s\n' N "serial ev/s" "P=1 ev/s" "P=2 ev/s" \
-	"P=2 / serial" "msg cost s" "latency s" "model P=2/ser" "P=2 MiB"
+printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s %10s\n' N "serial ev/s" "P=1 ev/s" \
+	"P=2 ev/s" "P=2 / serial" "msg cost s" "latency s" "model P=2/ser" "P=1 MiB" "P=2 MiB"
 for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 	read -r n t w <<<"$point"
-	s=() p1=() p2=() ratio=() cost=() lat=() mb=()
+	s=() p1=() p2=() ratio=() cost=() lat=() mb=() mb1=()
 	for ((k = 0; k < repeats; k++)); do
 		s+=("$(serial_rate n="$n" time="$t")") || exit 1
-		read -r r _ <<<"$(mpi_rate 1 n="$n" time="$t" window="$w" grow=1.02)"
-		p1+=("$r")
+		read -r r m _ <<<"$(mpi_rate 1 n="$n" time="$t" window="$w" grow=1.02)"
+		p1+=("$r") mb1+=("$m")
 		if [ "$cores" -ge 2 ]; then
 			read -r r m c l <<<"$(mpi_rate 2 n="$n" time="$t" window="$w" grow=1.02)"
 			p2+=("$r") cost+=("$c") lat+=("$l") mb+=("$m")
@@ -102,6 +110,7 @@ for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 	done
 	ms=$(printf '%s\n' "${s[@]}" | median)
 	m1=$(printf '%s\n' "${p1[@]}" | median)
+	mp1=$(printf '%s\n' "${mb1[@]}" | median)
 	m2="" mr="" mc="" ml="" mm="" mp=""
 	if ((${#p2[@]})); then
 		m2=$(printf '%s\n' "${p2[@]}" | median)
@@ -111,11 +120,26 @@ for point in "100000 6 0.05" "1000000 0.5 0.005"; do
 		mp=$(printf '%s\n' "${mb[@]}" | median)
 		mm=$(model_ratio "$ms" "$m1" "$mc" "$ml" n="$n" time="$t" window="$w" grow=1.02)
 	fi
-	printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s\n' "$n" "$ms" "$m1" "${m2:-skipped}" \
-		"${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}" "${mp:--}"
-	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s, "p2_peak_mib": %s}' \
+	printf '%-9s %14s %14s %14s %14s %12s %12s %14s %10s %10s\n' "$n" "$ms" "$m1" \
+		"${m2:-skipped}" "${mr:-skipped}" "${mc:--}" "${ml:--}" "${mm:--}" "${mp1:--}" "${mp:--}"
+	printf '%s\n    {"n": %s, "time": %s, "serial_events_per_s": %s, "p1_events_per_s": %s, "p2_events_per_s": %s, "p2_over_serial": %s, "message_cost_s": %s, "latency_s": %s, "model_p2_over_serial": %s, "p1_run_mib": %s, "p2_run_mib": %s}' \
 		"$sep" "$n" "$t" "${ms:-null}" "${m1:-null}" "${m2:-null}" "${mr:-null}" "${mc:-null}" \
-		"${ml:-null}" "${mm:-null}" "${mp:-null}" >>"$json"
+		"${ml:-null}" "${mm:-null}" "${mp1:-null}" "${mp:-null}" >>"$json"
+	sep=","
+done
+printf '\n  ],\n  "memory_n": 1000000,\n  "memory": [' >>"$json"
+printf '\nmemory a process holds, 10^6 disks (MiB; in the run: resident at its end)\n'
+printf '%-3s %14s %14s %14s %14s\n' P "run, rank 0" "run, others" "peak, rank 0" "peak, others"
+sep=""
+for np in 1 2 4; do
+	read -r a b p q <<<"$("${MPIRUN[@]}" "${SHARE[@]}" -np "$np" "$lzmpi" "$scene" check=no \
+		n=1000000 time=0.2 2>/dev/null | awk '/^run memory  / {a = $3} /^peak memory  / {p = $3}
+		/^run memory, others/ {b = $4} /^peak memory, others/ {q = $4}
+		END {print a, (b == "" ? "-" : b), p, (q == "" ? "-" : q)}')"
+	printf '%-3s %14s %14s %14s %14s\n' "$np" "$a" "$b" "$p" "$q"
+	printf '%s\n    {"processes": %s, "run_rank0_mib": %s, "run_others_mib": %s, "peak_rank0_mib": %s, "peak_others_mib": %s}' \
+		"$sep" "$np" "${a:-null}" "$([ "$b" = - ] && echo null || echo "$b")" "${p:-null}" \
+		"$([ "$q" = - ] && echo null || echo "$q")" >>"$json"
 	sep=","
 done
 printf '\n  ]\n}\n' >>"$json"

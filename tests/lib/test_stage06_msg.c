@@ -520,6 +520,62 @@ LZ_TEST(pedmd_local_numbering_is_the_same_run)
 }
 END_TEST
 
+LZ_TEST(pedmd_opened_ranks_take_the_start_in_parts)
+{
+	/* what lz-mpi's ranks do at the start: each opens empty with the start's box and
+	 * clock only, takes from the start's particles, sent 64 at a time, those of its
+	 * cells and halo, and the run is the serial run, bit for bit; the set-up is not a
+	 * move of the cuts, and a rank with a slot for every particle cannot open empty */
+	for (int kind = LZ_PEDMD_ROWS; kind <= LZ_PEDMD_MORTON; kind++) {
+		lz_edmd *s = kind ? sediment(800) : gas(2, 900, 0.35, 17);
+		lz_edmd *ref = kind ? sediment(800) : gas(2, 900, 0.35, 17);
+		lz_stub_params sp = {4, LZ_STUB_RANDOM, 5, 3, 0, 4, 1e-6, 2e-6, 5e-6};
+		lz_pedmd_params pp = {0.05, 0.5, 0, 0.05, 0, 16, 0, 1.125, 1};
+		lz_pedmd_sim *x = lz_pedmd_sim_alloc(s, kind, &sp, &pp);
+		LZ_REQUIRE_TRUE(x != NULL);
+		x->audit = 1;
+		lz_edmd shape = *s;  /* what rank 0 broadcasts: scalars, no arrays */
+		shape.p = NULL;
+		shape.ev = NULL;
+		shape.next = NULL;
+		shape.list = NULL;
+		shape.heap = NULL;
+		lz_pedmd_message part[64];
+		for (int k = 0; k < 4; k++) {
+			lz_pedmd_free(x->rank[k]);
+			x->rank[k] = lz_pedmd_open(&shape, x->d, lz_stub_rank(x->stub, k), &pp);
+			LZ_REQUIRE(x->rank[k] && lz_pedmd_take_begin(x->rank[k]) == LZ_OK, "rank %d: %s",
+			           k, lz_error_message());
+			size_t m;
+			uint32_t from = 0;
+			while ((m = lz_pedmd_start_part(s, &from, part, 64)) > 0)
+				LZ_REQUIRE(lz_pedmd_take_part(x->rank[k], part, m) == LZ_OK, "rank %d: %s", k,
+				           lz_error_message());
+			ck_assert_int_eq(lz_pedmd_take_end(x->rank[k]), LZ_OK);
+			LZ_REQUIRE(x->rank[k]->nslots < s->n && lz_pedmd_counters(x->rank[k]).balances == 0,
+			           "rank %d: %zu slots of %zu, %llu balances", k, x->rank[k]->nslots, s->n,
+			           (unsigned long long)lz_pedmd_counters(x->rank[k]).balances);
+		}
+		ck_assert_msg(lz_pedmd_audit(x->rank, 4) == LZ_OK, "opened: %s", lz_error_message());
+		double t = kind ? 2.0 : 0.6;
+		ck_assert_msg(lz_pedmd_sim_run(x, t) == LZ_OK, "the run: %s", lz_error_message());
+		ck_assert_int_eq(lz_pedmd_serial(ref, t, 0.5), LZ_OK);
+		ck_assert_uint_eq(lz_pedmd_sim_counts(x).committed, ref->events);
+		lz_pedmd_sim_gather(x, s);
+		for (uint32_t i = 0; i < s->n; i++)
+			LZ_REQUIRE(memcmp(&s->p[i], &ref->p[i], sizeof ref->p[i]) == 0, "particle %u ends "
+			           "elsewhere than serially after an opened start", i);
+		pp.compact = 0;
+		ck_assert_msg(lz_pedmd_open(&shape, x->d, lz_stub_rank(x->stub, 0), &pp) == NULL &&
+		              strstr(lz_error_message(), "compact"), "an opened rank with a slot for "
+		              "every particle: %s", lz_error_message());
+		lz_pedmd_sim_free(x);
+		lz_edmd_free(s);
+		lz_edmd_free(ref);
+	}
+}
+END_TEST
+
 LZ_TEST(pedmd_cuts_from_a_pilot_run_spread_the_work)
 {
 	lz_edmd *s = sediment(800), *t = sediment(800);

@@ -3,24 +3,28 @@
  *   mpirun -np P lz-mpi SCENE [key=value ...]
  *
  * Every process reads the scene, applies the overrides and binds the pedmd keys; the
- * seed that rank 0 drew for seed = auto is everyone's, so every process builds and
- * equilibrates the same system, bit for bit (lz_pedmd_scene_make). The P processes
- * are the ranks (a scene's `ranks` must agree, or be left out); each runs its domain
- * over the MPI back-end (lz/msg_mpi.h) until t_stop; the rank takes the system itself
- * (lz_pedmd_adopt), so a process holds one. Then rank 0 gathers the owned particles
- * into its rank's system, in rounds, sums the counters, prints a short report (stdout:
- * with the largest peak memory of a process) and, with check = yes, runs the serial
- * reference and compares bit for bit.
+ * seed that rank 0 drew for seed = auto is everyone's. Rank 0 alone builds and
+ * equilibrates the system (lz_pedmd_scene_make) and sends its box and clock to the
+ * others. The P processes are the ranks (a scene's `ranks` must agree, or be left
+ * out); each opens empty in local numbering (lz_pedmd_open) and takes its share — the
+ * particles of its cells and halo — from rank 0, in rounds (spread: each particle to
+ * the ranks that hold its cell); then rank 0 frees the start, so that no process
+ * holds all N during the run (on one process the rank takes the start itself,
+ * lz_pedmd_adopt). Each runs its domain over the MPI back-end (lz/msg_mpi.h) until
+ * t_stop. Then rank 0 gathers the owned particles into a frame of all N
+ * (lz_pedmd_release), in rounds, sums the counters, prints a short report (stdout:
+ * with the memory of rank 0 and of the largest other process, in the run and at the
+ * peak) and, with check = yes, runs the serial reference and compares bit for bit.
  * Before the run, ranks 0 and 1 measure what a message costs and how long it travels
  * (probe): the report prints both, for the virtual-time model of `make bench`.
  * The stub's keys (schedule, delay, costs, latency) and write_config mean nothing here.
- * balance = pilot: every process runs the same pilot in one process first (over the
- * stub: its committed events per cell do not depend on the schedule) and takes the
- * same cuts. balance = dynamic: at every cut that lz_pedmd_balance_due names, the
+ * balance = pilot: rank 0 runs a pilot in one process first (over the stub: its
+ * committed events per cell do not depend on the schedule) and every rank takes its
+ * cuts. balance = dynamic: at every cut that lz_pedmd_balance_due names, the
  * ranks sum their load since the last look (MPI_Allreduce), all find the same new
  * cuts, and when these pay every particle goes from its owner to the ranks that now
  * hold its cell (its new owner and those with the cell as halo), in rounds, never the
- * whole picture at once (lz_pedmd_take_begin .. _end).
+ * whole picture at once (lz_pedmd_take_begin .. _end), as at the start.
  *
  * Exit status, the same on every process: 0 success; 1 the run failed or differs from
  * the serial run; 2 bad input (usage, scene file, key, value, ranks). A failure while
@@ -29,6 +33,9 @@
  * others would wait for it forever, prints its message and calls MPI_Abort.
  */
 #include <math.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <sched.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -147,7 +154,8 @@ static int share_seeds(lz_scene *s, int rank)
 	return changed ? lz_method_bind(&lz_method_pedmd, s) : LZ_OK;
 }
 
-/* What only lz-mpi refuses, then the system (the same bits on every process). */
+/* What only lz-mpi refuses, then the run: its system (and the reference, to check) on
+ * rank 0 only — or on the one process —, the rest everywhere. */
 static int make(lz_scene *s, int rank, int size, lz_pedmd_scene *p)
 {
 	if (lz_scene_given(s, "ranks") && lz_scene_int(s, "ranks") != size)
@@ -161,7 +169,7 @@ static int make(lz_scene *s, int rank, int size, lz_pedmd_scene *p)
 	    ((st = lz_scene_set(s, "check=no", "lz-mpi (rank 0 checks)")) != LZ_OK ||
 	     (st = lz_method_bind(&lz_method_pedmd, s)) != LZ_OK))
 		return st;
-	return lz_pedmd_scene_make(s, rank != 0, p);
+	return lz_pedmd_scene_make(s, rank != 0, rank == 0, p);
 }
 
 /* The run's counters over all ranks, on rank 0 (lz_pedmd_counts_add). */
@@ -280,14 +288,23 @@ typedef struct {
 	int *count, *at, *rcount, *rat, *fill;
 } shares;
 
-/* One round of the hand-over: at most `chunk` particles this rank owned, from *from
- * on, each sent to the ranks that hold its cell now, and what comes here taken.
- * LZ_OK or an error. Collective. */
-static int share_round(lz_pedmd *r, const lz_pedmd_domains *d, int size, size_t *from,
+/* What this rank sends in a round of spread(): the particles of the start (rank 0 at
+ * the set-up, start != NULL), or those it owned under the old cuts. */
+typedef struct {
+	const lz_edmd *start;
+	uint32_t next;  /* the start's next particle */
+	size_t from;    /* the next formerly owned one */
+} source;
+
+/* One round of spread(): at most `chunk` particles from src, each sent to the ranks
+ * that hold its cell now, and what comes here taken. LZ_OK or an error. Collective. */
+static int share_round(lz_pedmd *r, const lz_pedmd_domains *d, int size, source *src,
                        size_t chunk, shares *b, MPI_Datatype type)
 {
 	const lz_edmd *e = lz_pedmd_system(r);
-	size_t n = lz_pedmd_take_share(r, from, b->part, chunk), total = 0, got = 0;
+	size_t n = src->start ? lz_pedmd_start_part(src->start, &src->next, b->part, chunk)
+	                      : lz_pedmd_take_share(r, &src->from, b->part, chunk);
+	size_t total = 0, got = 0;
 	int to[27];
 	memset(b->count, 0, (size_t)size * sizeof *b->count);
 	for (size_t k = 0; k < n; k++)
@@ -316,14 +333,15 @@ static int share_round(lz_pedmd *r, const lz_pedmd_domains *d, int size, size_t 
 	return lz_pedmd_take_part(r, b->in, got);
 }
 
-/* Every rank takes its share of the new cuts in d: the particles of its cells and
- * halo, sent by their owners under the old cuts in rounds of GATHER_ROUND / size a
- * rank (lz_pedmd_take_begin, _share, _part, _end), never the whole picture; then the
- * ranks must own N together. LZ_OK or an error. Collective. */
-static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
+/* Every rank takes its share under the cuts in d — the particles of its cells and
+ * halo —, sent from src in rounds of at most `chunk` a rank (lz_pedmd_take_begin,
+ * _part, _end), never the whole picture at once; then the ranks must own N together.
+ * `mine`: how many particles src holds here. LZ_OK or an error. Collective. */
+static int spread(lz_pedmd *r, const lz_pedmd_domains *d, int size, source *src, size_t mine,
+                  size_t chunk)
 {
-	size_t N = lz_pedmd_particles(r), chunk = GATHER_ROUND / (size_t)size, from = 0;
-	int need = (int)((lz_pedmd_owned(r, NULL) + chunk - 1) / chunk), rounds;
+	size_t N = lz_pedmd_particles(r);
+	int need = (int)((mine + chunk - 1) / chunk), rounds;
 	MPI_Allreduce(&need, &rounds, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
 	shares b = {.part = malloc(chunk * sizeof *b.part),
 	            .count = malloc(5 * (size_t)size * sizeof *b.count)};
@@ -338,7 +356,7 @@ static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
 	MPI_Type_commit(&type);
 	int st = lz_pedmd_take_begin(r);
 	for (int k = 0; k < rounds && st == LZ_OK; k++)
-		st = share_round(r, d, size, &from, chunk, &b, type);
+		st = share_round(r, d, size, src, chunk, &b, type);
 	MPI_Type_free(&type);
 	free(b.part);
 	free(b.out);
@@ -354,6 +372,14 @@ static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
 		return lz_error(LZ_EDOM, "after the hand-over the ranks own %llu of the %zu "
 		                "particles", sum, N);
 	return LZ_OK;
+}
+
+/* The new cuts in d: every particle from its owner under the old cuts to the ranks
+ * that hold its cell now, GATHER_ROUND / size a rank a round. Collective. */
+static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
+{
+	source src = {0};
+	return spread(r, d, size, &src, lz_pedmd_owned(r, NULL), GATHER_ROUND / (size_t)size);
 }
 
 /* balance = dynamic, at a cut lz_pedmd_balance_due names (every rank is there): the
@@ -431,26 +457,30 @@ static probe_result probe(lz_msg *msg, int rank, int size)
 	return res;
 }
 
-/* The largest of the processes' memory, in MiB, on rank 0: their peak resident size
- * (getrusage: kB on Linux; set-up included), or (now = 1) what each holds now
- * (/proc/self/statm: resident pages; 0 where that file is not). Collective. */
-static double memory_mib(int now)
+/* The processes' memory in MiB, on rank 0: what[0] rank 0's own, what[1] the largest
+ * of the others' (0 on one process) — their peak resident size (getrusage: kB on
+ * Linux; the set-up included), or (now = 1) what each holds now (/proc/self/statm:
+ * resident pages; 0 where that file is not). Collective. */
+static void memory_mib(int now, int rank, int size, double what[2])
 {
 	struct rusage u;
 	unsigned long pages = 0, resident = 0;
-	double mine = !now && getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024 : 0, most;
+	double mine = !now && getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024 : 0;
 	FILE *f = now ? fopen("/proc/self/statm", "r") : NULL;
 	if (f && fscanf(f, "%lu %lu", &pages, &resident) == 2)
 		mine = (double)resident * (double)sysconf(_SC_PAGESIZE) / 1048576;
 	if (f)
 		fclose(f);
-	MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
-	return most;
+	double other = rank == 0 ? 0 : mine;
+	what[0] = mine;
+	MPI_Reduce(&other, &what[1], 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+	if (size == 1)
+		what[1] = 0;
 }
 
 static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
                    const lz_pedmd_counts *c, double wall, probe_result cost, double pilot,
-                   double peak, double held)
+                   const double peak[2], const double held[2])
 {
 	const lz_edmd *e = p->system;
 	printf("lz-mpi: scene %s, %zu %s, %d ranks along the %s curve\n", lz_scene_name(s), e->n,
@@ -472,10 +502,15 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 		printf("pilot busiest share   %.4f (pilot cuts over even cuts)\n", pilot);
 	printf("parallel wall time    %.4f s\n", wall);
 	printf("committed events/s    %.4g\n", wall > 0 ? (double)c->committed / wall : 0.0);
-	printf("peak memory           %.1f MiB a process (the largest; %.0f bytes a particle)\n",
-	       peak, peak * 1048576 / (double)e->n);
-	printf("memory in the run     %.1f MiB a process (resident at the run's end, the largest; "
-	       "%.0f bytes a particle)\n", held, held * 1048576 / (double)e->n);
+	double n = (double)e->n / 1048576;  /* MiB over this: bytes a particle */
+	printf("peak memory           %.1f MiB on rank 0 (%.0f bytes a particle; it builds the "
+	       "start)\n", peak[0], peak[0] / n);
+	printf("run memory            %.1f MiB on rank 0 (resident at the run's end; %.0f bytes "
+	       "a particle)\n", held[0], held[0] / n);
+	if (size > 1)
+		printf("peak memory, others   %.1f MiB a process (the largest; %.0f bytes a "
+		       "particle)\nrun memory, others    %.1f MiB a process (the largest; %.0f "
+		       "bytes a particle)\n", peak[1], peak[1] / n, held[1], held[1] / n);
 	if (size > 1)
 		printf("message cost          %.3g s (send or receive; %d ping-pongs of ranks 0, 1)\n"
 		       "message latency       %.3g s\n", cost.cost, PROBE_PINGS, cost.latency);
@@ -483,19 +518,56 @@ static void report(const lz_scene *s, const lz_pedmd_scene *p, int size,
 }
 
 
+/* The start's box, cells and clock from rank 0 to every process (only scalars: its
+ * arrays stay where they are), into *shape. Collective. */
+static void share_shape(const lz_edmd *start, lz_edmd *shape)
+{
+	if (start)
+		*shape = *start;
+	MPI_Bcast(shape, (int)sizeof *shape, MPI_BYTE, 0, MPI_COMM_WORLD);
+	shape->list = NULL;
+	shape->next = NULL;
+	shape->p = NULL;
+	shape->ev = NULL;
+	shape->heap = NULL;
+	shape->cal = NULL;
+	shape->lists = NULL;
+}
+
+/* balance = pilot on rank 0, which holds the start; its cuts (when they pay) and ratio
+ * to everyone. The status as rank 0's, agreed. */
+static int pilot(lz_mpi_run *x, int rank, int size, uint32_t *cut, int *moved)
+{
+	int st = LZ_OK, agreed;
+	if (rank == 0 && lz_scene_enum(x->s, "balance") == 1)
+		st = lz_pedmd_scene_pilot(&x->p, cut, moved, &x->pilot_ratio);
+	if (agree(st, rank, size, &agreed))
+		return agreed;
+	MPI_Bcast(moved, 1, MPI_INT, 0, MPI_COMM_WORLD);
+	MPI_Bcast(cut, LZ_PEDMD_RANKS_MAX + 1, MPI_UINT32_T, 0, MPI_COMM_WORLD);
+	MPI_Bcast(&x->pilot_ratio, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+	return LZ_OK;
+}
+
 /* Scene, seeds, system and domains, agreed on after every step that can fail (the
- * steps between are collective): the agreed status. */
+ * steps between are collective): the agreed status. Only rank 0 builds the start; on
+ * one process the rank takes it itself (lz_pedmd_adopt), on more every rank opens
+ * empty and takes its share of it from rank 0, in rounds (spread), and rank 0 frees
+ * it: no process but rank 0 ever holds all N. */
 static int setup(int argc, char **argv, int rank, int size, lz_mpi_run *x)
 {
-	int agreed;
+	int agreed, moved = 0;
 	if (agree(load(argc, argv, size, &x->s), rank, size, &agreed) ||
-	    agree(share_seeds(x->s, rank), rank, size, &agreed))
+	    agree(share_seeds(x->s, rank), rank, size, &agreed) ||
+	    agree(make(x->s, rank, size, &x->p), rank, size, &agreed))
 		return agreed;
-	int st = make(x->s, rank, size, &x->p), moved = 0;
-	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1];
-	if (st == LZ_OK && lz_scene_enum(x->s, "balance") == 1)  /* pilot: the same everywhere */
-		st = lz_pedmd_scene_pilot(&x->p, cut, &moved, &x->pilot_ratio);
-	if (st == LZ_OK && !(x->d = lz_pedmd_domains_alloc(x->p.system, size, x->p.kind)))
+	uint32_t cut[LZ_PEDMD_RANKS_MAX + 1] = {0};
+	int st = pilot(x, rank, size, cut, &moved);
+	if (st != LZ_OK)
+		return st;
+	lz_edmd shape;
+	share_shape(x->p.system, &shape);
+	if (!(x->d = lz_pedmd_domains_alloc(&shape, size, x->p.kind)))
 		st = last_code ? last_code : LZ_EINVAL;
 	if (st == LZ_OK && moved)
 		memcpy(x->d->cut, cut, (size_t)(size + 1) * sizeof *cut);
@@ -503,11 +575,24 @@ static int setup(int argc, char **argv, int rank, int size, lz_mpi_run *x)
 		return agreed;
 	if (!(x->msg = lz_msg_mpi_open()))  /* collective: a failure here stops everyone */
 		abort_run(rank, last_code);
-	/* the rank takes the system itself: a process holds one copy of it, not two */
-	x->r = lz_pedmd_adopt(x->p.system, x->d, x->msg, &x->p.params);
+	if (size == 1) {  /* the rank takes the system itself: one copy of it, not two */
+		x->r = lz_pedmd_adopt(x->p.system, x->d, x->msg, &x->p.params);
+		x->p.system = NULL;
+		agree(x->r ? LZ_OK : last_code, rank, size, &agreed);
+		return agreed;
+	}
+	x->r = lz_pedmd_open(&shape, x->d, x->msg, &x->p.params);
+	if (agree(x->r ? LZ_OK : last_code, rank, size, &agreed))
+		return agreed;
+	source src = {.start = x->p.system};
+	if ((st = spread(x->r, x->d, size, &src, rank == 0 ? shape.n : 0, GATHER_ROUND)) != LZ_OK)
+		abort_run(rank, st);  /* the others may wait in a round: stop them */
+	lz_edmd_free(x->p.system);
 	x->p.system = NULL;
-	agree(x->r ? LZ_OK : last_code, rank, size, &agreed);
-	return agreed;
+#ifdef __GLIBC__
+	malloc_trim(0);  /* the start's and the rounds' freed memory back to the system */
+#endif
+	return LZ_OK;
 }
 
 /* Free everything (collectively: the back-end's communicator) and exit with st. */
@@ -552,12 +637,13 @@ int main(int argc, char **argv)
 	}
 	double wall = MPI_Wtime() - t0, slowest = wall;
 	MPI_Reduce(&wall, &slowest, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
-	double held = memory_mib(1);  /* before the picture is gathered */
+	double held[2], peak[2];
+	memory_mib(1, rank, size, held);  /* before the picture is gathered */
 
 	/* The results, on rank 0. */
 	lz_pedmd_counts c = counts_of_all(x.r, rank, size);
 	st = gather(&x, rank, size);
-	double peak = memory_mib(0);  /* check = yes: the serial reference is in it too */
+	memory_mib(0, rank, size, peak);  /* check = yes: the serial reference is in it too */
 	if (rank == 0 && st == LZ_OK)
 		report(x.s, &x.p, size, &c, slowest, cost, x.pilot_ratio, peak, held);
 	if (rank == 0 && st == LZ_OK && x.p.check && (st = lz_pedmd_scene_serial(&x.p)) == LZ_OK) {

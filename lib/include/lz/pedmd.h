@@ -512,6 +512,14 @@ lz_pedmd *lz_pedmd_alloc(const lz_edmd *s, const lz_pedmd_domains *d, lz_msg *ms
  * the rank from then on (NULL with lz_error: then s is freed). O(N + cells). */
 lz_pedmd *lz_pedmd_adopt(lz_edmd *s, const lz_pedmd_domains *d, lz_msg *msg,
                          const lz_pedmd_params *p);
+/* Rank `rank` of a run over d in local numbering (p->compact = 1), holding nothing
+ * yet: its box, cells and clock those of `shape` (a system whose scalars only are read:
+ * its arrays may be absent, as on a process that never held the start). It takes its
+ * particles with lz_pedmd_take_begin, _part and _end, as at a move of the cuts, from
+ * the process that holds the start (lz-mpi: rank 0), so that no other process holds
+ * all N. NULL with lz_error. O(cells). */
+lz_pedmd *lz_pedmd_open(const lz_edmd *shape, const lz_pedmd_domains *d, lz_msg *msg,
+                        const lz_pedmd_params *p);
 void lz_pedmd_free(lz_pedmd *r);
 /* Free the rank but keep its system, and return it: all N records, owned ones up to
  * date (the frame into which lz-mpi gathers the run's picture). Compact: a new system
@@ -552,6 +560,13 @@ size_t lz_pedmd_owned(const lz_pedmd *r, lz_pedmd_message *out);
 size_t lz_pedmd_owned_part(const lz_pedmd *r, uint32_t *from, lz_pedmd_message *out,
                            size_t most);
 
+/* The particles of a start s (lz_edmd_start done), as lz_pedmd_owned_part lists a
+ * rank's: at most `most` from particle *from on (which moves past them), each with
+ * its record and its event at its key in s's heap — what an opened rank takes
+ * (lz_pedmd_open). Their number. O(most). */
+size_t lz_pedmd_start_part(const lz_edmd *s, uint32_t *from, lz_pedmd_message *out,
+                           size_t most);
+
 /* At a cut (phase BEGIN, nothing waiting): rank r takes its share, under the cuts now
  * in r->d, of the serial picture that all[0 .. n-1] make — every particle once, from
  * lz_pedmd_owned of all ranks — as lz_pedmd_alloc would from a serial system, so that
@@ -572,7 +587,8 @@ int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n);
  * LZ_EINVAL when one comes twice or is not in the system (the rank is then half
  * taken: the run cannot go on); lz_pedmd_take_end gives every particle that did not
  * come the record count LZ_PEDMD_UNKNOWN, files the cells by number and fills the
- * heap. That every particle came to its new owner is the caller's check (the owned
+ * heap (and counts a balance, unless no window has begun: an opened rank's set-up,
+ * lz_pedmd_open). That every particle came to its new owner is the caller's check (the owned
  * particles of all ranks add up to N). LZ_OK, or LZ_ENOMEM from _end. O(N + cells)
  * in all, and a message a formerly owned particle until the end. */
 int lz_pedmd_take_begin(lz_pedmd *r);
