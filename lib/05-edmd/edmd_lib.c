@@ -183,11 +183,14 @@ lz_edmd *lz_edmd_alloc(const lz_edmd_params *p)
 	return e;
 }
 
-int lz_edmd_grow(lz_edmd *e, size_t n)
+int lz_edmd_resize(lz_edmd *e, size_t n)
 {
-	if (e->lists || e->cal || n < e->n || n >= (size_t)INT32_MAX)
-		return lz_error(LZ_EINVAL, "a system grows to %zu particles: from its %zu, below "
-		                "2^31, with cells and a heap", n, e->n);
+	if (e->lists || e->cal || n < 1 || n >= (size_t)INT32_MAX)
+		return lz_error(LZ_EINVAL, "a system of %zu particles resized to %zu: 1 .. 2^31 - 1, "
+		                "with cells and a heap", e->n, n);
+	int st = lz_heap_resize(e->heap, n);  /* first: it refuses a particle still in it */
+	if (st != LZ_OK)
+		return st;
 	size_t old = e->n;
 	int32_t *next = lz_bigmem_resize(e->next - 1, (old + 1) * sizeof *next,
 	                                 (n + 1) * sizeof *next);
@@ -201,11 +204,8 @@ int lz_edmd_grow(lz_edmd *e, size_t n)
 		e->ev = ev;
 	if (!ev)
 		return lz_error(LZ_ENOMEM, "no memory for %zu particles", n);
-	int st = lz_heap_reserve(e->heap, n);
-	if (st != LZ_OK)
-		return st;
-	memset(e->p + old, 0, (n - old) * sizeof *e->p);
 	for (size_t i = old; i < n; i++) {
+		e->p[i] = (lz_edmd_particle){0};
 		e->next[i] = -1;
 		e->ev[i] = (lz_edmd_event){LZ_EDMD_NONE, 0};
 	}

@@ -54,11 +54,15 @@ void lz_heap_free(lz_heap *h)
 	free(h);
 }
 
-int lz_heap_reserve(lz_heap *h, size_t cap)
+int lz_heap_resize(lz_heap *h, size_t cap)
 {
-	if (cap < h->cap || cap >= LZ_HEAP_NONE)
-		return lz_error(LZ_EINVAL, "heap capacity %zu must be in [%zu, %u)", cap, h->cap,
-		                LZ_HEAP_NONE);
+	if (cap < 1 || cap >= LZ_HEAP_NONE || cap < h->n)
+		return lz_error(LZ_EINVAL, "heap capacity %zu must be in [1, %u) and hold its %zu "
+		                "nodes", cap, LZ_HEAP_NONE, h->n);
+	for (size_t k = 0; k < h->n; k++)
+		if (h->node[k].id >= cap)
+			return lz_error(LZ_EINVAL, "heap capacity %zu: item %u is in the heap", cap,
+			                h->node[k].id);
 	size_t f = front(h->arity), b = behind(h->arity), old = h->cap;
 	lz_heap_node *node = lz_bigmem_resize(h->node - f, (f + old + b) * sizeof *node,
 	                                      (f + cap + b) * sizeof *node);
@@ -71,7 +75,7 @@ int lz_heap_reserve(lz_heap *h, size_t cap)
 	h->pos = pos;
 	for (size_t i = old; i < cap; i++)
 		pos[i] = LZ_HEAP_NONE;
-	for (size_t k = old + b; k < cap + b; k++)  /* past the nodes in use: "never" */
+	for (size_t k = h->n; k < cap + b; k++)  /* past the nodes in use: "never" */
 		h->node[k] = (lz_heap_node){INFINITY, 0};
 	h->cap = cap;
 	return LZ_OK;

@@ -528,25 +528,28 @@ int lz_pedmd_take_begin(lz_pedmd *r)
 	if (r->phase != LZ_PEDMD_BEGIN || r->nwait > 0)
 		return lz_error(LZ_EINVAL, "rank %d: new cuts only at a cut, between windows with no "
 		                "message waiting", r->rank);
-	size_t n = lz_pedmd_owned(r, NULL);
-	if (n > 0 && lz_pedmd_grow((void **)&r->former, &r->capformer, n - 1, sizeof *r->former))
-		return LZ_ENOMEM;
-	r->nformer = lz_pedmd_owned(r, r->former);
+	r->nformer = 0;
+	for (uint32_t i = 0; i < r->nslots; i++)
+		if (r->role[i] == LZ_PEDMD_OWNED) {
+			if (lz_pedmd_grow((void **)&r->former, &r->capformer, r->nformer,
+			                  sizeof *r->former))
+				return LZ_ENOMEM;
+			r->former[r->nformer++] = i;
+		}
 	for (uint32_t i = 0; i < r->e->n; i++)
 		r->role[i] = LZ_PEDMD_ABSENT;
-	lz_pedmd_forget(r);
 	classify_cells(r);
 	return LZ_OK;
 }
 
-/* The former owned particles as they were sent: what comes back in _part is the
- * same. */
+/* The records of former owned particles stay as they were until _end: only their old
+ * owner, this rank, sends them, so what comes back in _part is the same. */
 size_t lz_pedmd_take_share(const lz_pedmd *r, size_t *from, lz_pedmd_message *out,
                            size_t most)
 {
 	size_t k = 0;
 	for (; *from < r->nformer && k < most; k++, ++*from)
-		out[k] = r->former[*from];
+		out[k] = lz_pedmd_outgoing(r, r->former[*from], LZ_PEDMD_MIGRATE, r->e->now);
 	return k;
 }
 
@@ -584,6 +587,9 @@ int lz_pedmd_take_end(lz_pedmd *r)
 		if (r->role[i] == LZ_PEDMD_ABSENT)
 			e->p[i].count = LZ_PEDMD_UNKNOWN;  /* what a rank need not hold (lz/pedmd.h) */
 	}
+	lz_heap_clear(e->heap);  /* refilled below */
+	if (lz_pedmd_compact(r) != LZ_OK)
+		return LZ_ENOMEM;
 	clear_cells(r);
 	uint32_t *order = lz_pedmd_by_number(r);
 	if (!order)

@@ -93,13 +93,23 @@ static int resize(void **v, size_t old, size_t n, size_t size)
 	return LZ_OK;
 }
 
-int lz_pedmd_reserve(lz_pedmd *r, size_t n)
+/* The index's size for n slots: at most three quarters full. */
+static int bits_for(size_t n)
+{
+	int bits = 6;
+	while (3 * ((size_t)1 << bits) < 4 * n)
+		bits++;
+	return bits;
+}
+
+/* n slots (at least those in use): the system, the rank's arrays and the index, more
+ * or fewer, the new slots blank; the window's snapshot of the system follows them (a
+ * rollback restores the scalars, not the arrays). LZ_OK or LZ_ENOMEM. O(n). */
+static int resize_slots(lz_pedmd *r, size_t n)
 {
 	lz_edmd *e = r->e;
 	size_t old = e->n;
-	if (n <= old)
-		return LZ_OK;
-	if (lz_edmd_grow(e, n) != LZ_OK ||
+	if (lz_edmd_resize(e, n) != LZ_OK ||
 	    resize((void **)&r->role, old, n, sizeof *r->role) ||
 	    resize((void **)&r->own, old, n, sizeof *r->own) ||
 	    resize((void **)&r->ghost, old, n, sizeof *r->ghost) ||
@@ -113,10 +123,12 @@ int lz_pedmd_reserve(lz_pedmd *r, size_t n)
 	r->snap.p = e->p;
 	r->snap.ev = e->ev;
 	r->snap.next = e->next;
-	int bits = r->hbits;  /* at most three quarters full */
-	while (3 * ((size_t)1 << bits) < 4 * n)
-		bits++;
-	return bits > r->hbits ? index_make(r, bits) : LZ_OK;
+	return index_make(r, bits_for(n));
+}
+
+int lz_pedmd_reserve(lz_pedmd *r, size_t n)
+{
+	return n <= r->e->n ? LZ_OK : resize_slots(r, n);
 }
 
 int lz_pedmd_hold(lz_pedmd *r, uint32_t id, uint32_t *slot)
@@ -156,14 +168,56 @@ int lz_pedmd_incoming(lz_pedmd *r, lz_pedmd_message *m)
 	return st;
 }
 
-void lz_pedmd_forget(lz_pedmd *r)
+/* The slot a partner moved to (to[]), or NONE when it was dropped. */
+static void remap(int32_t *partner, const uint32_t *to)
+{
+	if (*partner >= 0)
+		*partner = to[*partner] == EMPTY ? LZ_EDMD_NONE : (int32_t)to[*partner];
+}
+
+int lz_pedmd_compact(lz_pedmd *r)
 {
 	if (!r->gid)
-		return;
+		return LZ_OK;
+	lz_edmd *e = r->e;
+	uint32_t *to = malloc((r->nslots ? r->nslots : 1) * sizeof *to), k = 0;
+	if (!to)
+		return lz_error(LZ_ENOMEM, "rank %d: no memory to renumber %zu slots", r->rank, r->nslots);
 	for (uint32_t i = 0; i < r->nslots; i++)
+		to[i] = r->role[i] != LZ_PEDMD_ABSENT ? 0 : EMPTY;
+	for (uint32_t i = 0; i < r->nslots; i++) {  /* and the partners they name */
+		int32_t a = r->own[i].ev.partner, b = r->ghost[i].ev.partner;
+		if (r->role[i] != LZ_PEDMD_ABSENT && a >= 0)
+			to[a] = 0;
+		if (r->role[i] != LZ_PEDMD_ABSENT && b >= 0)
+			to[b] = 0;
+	}
+	for (uint32_t i = 0; i < r->nslots; i++)
+		if (to[i] != EMPTY) {  /* k <= i: moved down, never over one still to move */
+			to[i] = k;
+			e->p[k] = e->p[i];
+			e->ev[k] = e->ev[i];
+			r->role[k] = r->role[i];
+			r->own[k] = r->own[i];
+			r->ghost[k] = r->ghost[i];
+			r->heard[k] = r->heard[i];
+			r->gid[k++] = r->gid[i];
+		}
+	for (uint32_t i = 0; i < k; i++) {
+		remap(&e->ev[i].partner, to);
+		remap(&r->own[i].ev.partner, to);
+		remap(&r->ghost[i].ev.partner, to);
+	}
+	free(to);
+	for (uint32_t i = k; i < r->nslots; i++)
 		blank(r, i);
-	r->nslots = 0;
-	memset(r->index, 0xff, r->hcap * sizeof *r->index);
+	for (uint32_t i = 0; i < k; i++)
+		r->mark[i] = 0;
+	r->nslots = k;
+	size_t room = k + k / 8 + 64;
+	if (2 * e->n > 3 * room)  /* a share much smaller than before: give the room back */
+		return resize_slots(r, room);
+	return index_make(r, r->hbits);
 }
 
 static int by_first(const void *a, const void *b)
@@ -206,5 +260,5 @@ int lz_pedmd_slots_init(lz_pedmd *r)
 	for (uint32_t i = 0; i < r->e->n; i++)
 		blank(r, i);
 	r->nslots = 0;
-	return index_make(r, 6);
+	return index_make(r, bits_for(r->e->n));
 }

@@ -809,54 +809,63 @@ LZ_TEST(edmd_run_refuses_to_go_back_in_time)
 }
 END_TEST
 
-LZ_TEST(edmd_grows_and_runs_as_before)
+LZ_TEST(edmd_resizes_and_runs_as_before)
 {
-	/* a system that grows (a rank of lz/pedmd.h meeting particles) keeps what it holds:
-	 * records, cells, heap keys; the new particles are in no cell and not in the heap,
-	 * so the run is the one it would have been, bit for bit; 2D and 4-ary heaps grow
-	 * too, and a system with lists or a smaller n is refused */
+	/* a system that grows and shrinks (a rank of lz/pedmd.h meeting particles and
+	 * handing them over) keeps what it holds: records, cells, heap keys; the new
+	 * particles are in no cell and not in the heap, so the run is the one it would have
+	 * been, bit for bit; a 4-ary heap resizes too; a particle still in the heap cannot
+	 * be dropped, nor can a system with lists resize */
 	lz_edmd *a = lattice(2, 400, 0.3, LZ_EDMD_WALLS_NONE, 3);
 	lz_edmd *b = lattice(2, 400, 0.3, LZ_EDMD_WALLS_NONE, 3);
 	LZ_REQUIRE_TRUE(lz_edmd_run(a, 2000, INFINITY) == LZ_OK &&
 	                lz_edmd_run(b, 2000, INFINITY) == LZ_OK);
 	double key7 = lz_heap_key(b->heap, 7);
-	ck_assert_msg(lz_edmd_grow(b, 1000) == LZ_OK && b->n == 1000 && b->heap->cap == 1000,
+	ck_assert_msg(lz_edmd_resize(b, 1000) == LZ_OK && b->n == 1000 && b->heap->cap == 1000,
 	              "grow to 1000: %s", lz_error_message());
 	ck_assert_msg(lz_heap_audit(b->heap) == LZ_OK && lz_heap_key(b->heap, 7) == key7,
 	              "the heap after growing: %s", lz_error_message());
 	for (uint32_t i = 400; i < 1000; i++)
 		LZ_REQUIRE(!lz_heap_contains(b->heap, i) && b->next[i] == -1 && b->p[i].count == 0 &&
 		           b->ev[i].partner == LZ_EDMD_NONE, "new particle %u is not blank", i);
-	lz_test_refused(lz_edmd_grow(b, 999) != LZ_OK, "lz_edmd_grow to fewer", "999", NULL);
+	LZ_REQUIRE_TRUE(lz_edmd_run(a, 5000, INFINITY) == LZ_OK &&
+	                lz_edmd_run(b, 5000, INFINITY) == LZ_OK);
+	ck_assert_msg(lz_edmd_resize(b, 400) == LZ_OK && b->n == 400, "back to 400: %s",
+	              lz_error_message());
+	lz_test_refused(lz_edmd_resize(b, 399) != LZ_OK, "lz_edmd_resize below a particle in the "
+	                "heap", "its 400 nodes", NULL);
+	ck_assert_msg(b->n == 400 && lz_heap_audit(b->heap) == LZ_OK, "a refused resize changed "
+	              "the system: %s", lz_error_message());
 	LZ_REQUIRE_TRUE(lz_edmd_run(a, 20000, INFINITY) == LZ_OK &&
 	                lz_edmd_run(b, 20000, INFINITY) == LZ_OK);
 	ck_assert_msg(a->collisions == b->collisions && lz_edmd_time(a) == lz_edmd_time(b),
-	              "grown: %llu collisions, not grown: %llu", (unsigned long long)b->collisions,
+	              "resized: %llu collisions, not resized: %llu", (unsigned long long)b->collisions,
 	              (unsigned long long)a->collisions);
 	for (uint32_t i = 0; i < a->n; i++)
 		LZ_REQUIRE(memcmp(&a->p[i], &b->p[i], sizeof a->p[i]) == 0, "particle %u differs "
-		           "after the system grew", i);
+		           "after the system was resized", i);
 	lz_edmd_free(a);
 	lz_edmd_free(b);
 	lz_heap *h = lz_heap_alloc_arity(5, 4);
 	LZ_REQUIRE_TRUE(h);
 	for (uint32_t id = 0; id < 5; id++)
 		lz_heap_push(h, id, 10.0 - id);
-	ck_assert_int_eq(lz_heap_reserve(h, 40), LZ_OK);
+	ck_assert_int_eq(lz_heap_resize(h, 40), LZ_OK);
 	for (uint32_t id = 5; id < 40; id++)
 		lz_heap_push(h, id, (double)((id * 7u) % 13u));
 	ck_assert_msg(lz_heap_audit(h) == LZ_OK, "a grown 4-ary heap: %s", lz_error_message());
 	double last = -1;
-	while (h->n > 0) {
+	while (h->n > 30) {
 		LZ_REQUIRE(lz_heap_top_t(h) >= last, "popped %g after %g", lz_heap_top_t(h), last);
 		last = lz_heap_top_t(h);
 		lz_heap_pop(h);
 	}
-	lz_test_refused(lz_heap_reserve(h, 3) != LZ_OK, "lz_heap_reserve to fewer", "capacity 3", NULL);
+	lz_test_refused(lz_heap_resize(h, 3) != LZ_OK, "lz_heap_resize below its nodes", "capacity 3",
+	                NULL);
 	lz_heap_free(h);
 	lz_edmd_params q = {3, 500, 0.3, 1, 0, LZ_EDMD_WALLS_NONE, 0, LZ_EDMD_LIST, 0, 0};
 	lz_edmd *l = alloc_ok(&q);
-	lz_test_refused(lz_edmd_grow(l, 600) != LZ_OK, "lz_edmd_grow with lists", "cells", NULL);
+	lz_test_refused(lz_edmd_resize(l, 600) != LZ_OK, "lz_edmd_resize with lists", "cells", NULL);
 	lz_edmd_free(l);
 }
 END_TEST

@@ -382,6 +382,16 @@ static int hand_over(lz_pedmd *r, const lz_pedmd_domains *d, int size)
 	return spread(r, d, size, &src, lz_pedmd_owned(r, NULL), GATHER_ROUND / (size_t)size);
 }
 
+/* After a hand-over: the freed buffers (and at the start, the start) back to the
+ * system, so that a process holds what its rank holds (glibc keeps freed memory
+ * otherwise; elsewhere nothing). */
+static void give_back(void)
+{
+#ifdef __GLIBC__
+	malloc_trim(0);
+#endif
+}
+
 /* balance = dynamic, at a cut lz_pedmd_balance_due names (every rank is there): the
  * load since the last look summed over the ranks, the same new cuts everywhere, and
  * when they pay, the particles handed over to the ranks that now hold their cells.
@@ -401,7 +411,9 @@ static int move_cuts(lz_pedmd *r, lz_pedmd_domains *d, int rank, int size)
 	if (!moved)
 		return LZ_OK;
 	memcpy(d->cut, cut, (size_t)(size + 1) * sizeof *cut);
-	return hand_over(r, d, size);
+	st = hand_over(r, d, size);
+	give_back();
+	return st;
 }
 
 /* The two costs of a message that the stub's virtual-time policy models (lz/msg.h),
@@ -589,9 +601,7 @@ static int setup(int argc, char **argv, int rank, int size, lz_mpi_run *x)
 		abort_run(rank, st);  /* the others may wait in a round: stop them */
 	lz_edmd_free(x->p.system);
 	x->p.system = NULL;
-#ifdef __GLIBC__
-	malloc_trim(0);  /* the start's and the rounds' freed memory back to the system */
-#endif
+	give_back();
 	return LZ_OK;
 }
 

@@ -345,13 +345,14 @@ int lz_edmd_auto_cells(int dim, size_t n, double L);
 lz_edmd *lz_edmd_alloc(const lz_edmd_params *p);
 void lz_edmd_free(lz_edmd *e);
 
-/* Room for n particles (n >= e->n; cells and a heap, not lists or a calendar): e->n
- * becomes n, the particles already there keep their records, events, cells and keys;
- * the new ones are zero records in no cell and not in the heap, their events NONE;
- * e->prefetch as lz_edmd_alloc sets it for n.
- * For a system that meets more particles as it runs (a rank of lz/pedmd.h). LZ_OK, or
- * LZ_EINVAL / LZ_ENOMEM with e unchanged but for arrays already grown. O(n). */
-int lz_edmd_grow(lz_edmd *e, size_t n);
+/* Room for n particles, more or fewer (1 <= n < 2^31; cells and a heap, not lists or
+ * a calendar): e->n becomes n, the particles below both keep their records, events,
+ * cells and keys; new ones are zero records in no cell and not in the heap, their
+ * events NONE; those dropped must be in no cell and not in the heap (the heap is
+ * checked). e->prefetch as lz_edmd_alloc sets it for n. For a system whose particles
+ * change in number (a rank of lz/pedmd.h). LZ_OK, or LZ_EINVAL / LZ_ENOMEM with e
+ * unchanged but for arrays already resized. O(n). */
+int lz_edmd_resize(lz_edmd *e, size_t n);
 
 /* Place the particles on a simple cubic (square in 2D) lattice — or fcc in 3D when
  * the simple cubic one would be closer than σ — shifted by a random vector along the

@@ -142,11 +142,12 @@ void lz_heap_shift(lz_heap *h, double dt);
  * keys and order unchanged, pos[] rebuilt. O(cap). */
 void lz_heap_renumber(lz_heap *h, const uint32_t *to);
 
-/* Room for the items 0 .. cap-1 (cap >= h->cap, < 2^32 - 1): the new ones not in the
- * heap, the nodes and their order as they were. For a system whose particles grow in
- * number (a rank of lz/pedmd.h that meets particles it did not hold). LZ_OK, or
- * LZ_EINVAL / LZ_ENOMEM with h unchanged. O(cap). */
-int lz_heap_reserve(lz_heap *h, size_t cap);
+/* Room for the items 0 .. cap-1 (1 <= cap < 2^32 - 1), more or fewer than before, the
+ * nodes and their order as they were: every item in the heap must be below cap. The
+ * new items are not in the heap. For a system whose particles change in number (a
+ * rank of lz/pedmd.h that meets particles, or hands them over). LZ_OK, or LZ_EINVAL /
+ * LZ_ENOMEM with h unchanged. O(cap + n). */
+int lz_heap_resize(lz_heap *h, size_t cap);
 
 /* ---- checks (library) ---- */
 

@@ -91,7 +91,8 @@
  * sent and when received (lz_pedmd_outgoing, lz_pedmd_incoming: a particle met for
  * the first time gets a blank slot, ABSENT, count LZ_PEDMD_UNKNOWN), and so are the
  * log, the audit and the pictures. Slots are never given back during a run (an event
- * may still aim at one); moving the cuts (lz_pedmd_take) starts them afresh. Where
+ * may still aim at one); moving the cuts (lz_pedmd_take) keeps only those it then
+ * holds and names (lz_pedmd_compact). Where
  * the order of particles decides something — which side of a replicated collision
  * commits it, the order of waiting messages at one time, of a cell's list after a
  * hand-over, of the heap's filling — it is the order of the numbers, so a rank in
@@ -312,8 +313,8 @@ typedef struct lz_pedmd {
 	/* moving cuts (params.balance) */
 	uint64_t next_balance;        /* the windows begun at the next look at the load */
 	double *load0;                /* load[] at the last look (NULL: none yet) */
-	lz_pedmd_message *former;     /* between lz_pedmd_take_begin and _end: the particles
-	                                 the rank owned under the old cuts, as sent */
+	uint32_t *former;             /* between lz_pedmd_take_begin and _end: the particles
+	                                 the rank owned under the old cuts */
 	size_t nformer, capformer;
 	/* local numbering (params.compact; pedmd_slots.c) */
 	size_t N;                     /* the particles of the whole system */
@@ -468,9 +469,9 @@ int64_t lz_pedmd_slot(const lz_pedmd *r, uint32_t id);
  * across the call). LZ_OK, LZ_EDOM (id out of range) or LZ_ENOMEM. O(1) amortised. */
 int lz_pedmd_hold(lz_pedmd *r, uint32_t id, uint32_t *slot);
 
-/* Room for n slots (compact; more than e->n: the system, the rank's arrays and its
- * index grow, the new slots blank; the window's snapshot of the system follows them,
- * as a rollback restores its scalars, not its arrays). LZ_OK or LZ_ENOMEM. O(n). */
+/* Room for n slots (compact): when more than e->n, the system, the rank's arrays and
+ * its index grow, the new slots blank (the window's snapshot of the system follows
+ * them: a rollback restores its scalars, not its arrays). LZ_OK or LZ_ENOMEM. O(n). */
 int lz_pedmd_reserve(lz_pedmd *r, size_t n);
 
 /* A message as it travels: the particle and its event's partner by number. And one
@@ -478,9 +479,12 @@ int lz_pedmd_reserve(lz_pedmd *r, size_t n);
 lz_pedmd_message lz_pedmd_outgoing(const lz_pedmd *r, uint32_t i, uint32_t kind, double t);
 int lz_pedmd_incoming(lz_pedmd *r, lz_pedmd_message *m);
 
-/* Forget every slot (compact only: the rank then holds nothing; the cells and the heap
- * must be emptied by the caller). Not compact: nothing. O(slots). */
-void lz_pedmd_forget(lz_pedmd *r);
+/* After a hand-over (lz_pedmd_take_end, its heap emptied, before its cells are filled):
+ * keep the slots of the particles r holds and of the partners their events name, in
+ * their order, drop the others, and when the room is more than half as much again
+ * as that, give back all but an eighth more (compact only; else nothing). LZ_OK or
+ * LZ_ENOMEM. O(slots). */
+int lz_pedmd_compact(lz_pedmd *r);
 
 /* The slots in use in the order of their particles' numbers (malloc'd, nslots of
  * them; the caller frees it). NULL with lz_error when out of memory. O(M log M). */
@@ -590,7 +594,7 @@ int lz_pedmd_take(lz_pedmd *r, const lz_pedmd_message *all, size_t n);
  * heap (and counts a balance, unless no window has begun: an opened rank's set-up,
  * lz_pedmd_open). That every particle came to its new owner is the caller's check (the owned
  * particles of all ranks add up to N). LZ_OK, or LZ_ENOMEM from _end. O(N + cells)
- * in all, and a message a formerly owned particle until the end. */
+ * in all, and 4 bytes a formerly owned particle until the end. */
 int lz_pedmd_take_begin(lz_pedmd *r);
 size_t lz_pedmd_take_share(const lz_pedmd *r, size_t *from, lz_pedmd_message *out,
                            size_t most);
