@@ -250,7 +250,7 @@ uint32_t *lz_pedmd_by_number(const lz_pedmd *r)
 	return out;
 }
 
-/* The local numbering of a new rank (compact): no slot yet, an index of 64 entries.
+/* The local numbering of a new rank (compact): no slot in use, an empty index.
  * LZ_OK or LZ_ENOMEM. */
 int lz_pedmd_slots_init(lz_pedmd *r)
 {
